@@ -1,0 +1,56 @@
+#pragma once
+// A hyperelastic material in its own frame (axis 1 = fibre, 2 = sheet, 3 = normal).
+// Three verbs, as MFEM's HyperelasticModel: energy W(Z), stress Π = ∂W/∂Z (first
+// Piola–Kirchhoff), tangent 𝔸 = ∂Π/∂Z (9x9, row = Π component, column = Z component,
+// both column-major 9-vectors; DESIGN §1). Z = ∂u/∂X, F = I + Z.
+//
+// Implementations throw fe2::NumericalError when det F <= 0 (an inverted point), so a
+// Newton driver can cut its step back; they never return NaN silently.
+#include "common/tensor9.h"
+
+#include <memory>
+#include <string>
+
+namespace fe2 {
+
+class Material {
+ public:
+  virtual ~Material() = default;
+
+  /// Short model name as written in specs, e.g. "neo_hookean".
+  virtual std::string name() const = 0;
+
+  /// Strain energy per unit reference volume, W(Z).
+  virtual double energy(const Vec9& Z) const = 0;
+
+  /// Π(Z) and 𝔸(Z) together (the hot path: one call per micro Gauss point).
+  virtual void stress_and_tangent(const Vec9& Z, Vec9& Pi, Mat9& A) const = 0;
+
+  /// Π(Z) alone; default evaluates the pair.
+  virtual Vec9 stress(const Vec9& Z) const {
+    Vec9 Pi;
+    Mat9 A;
+    stress_and_tangent(Z, Pi, A);
+    return Pi;
+  }
+
+  /// 𝔸(Z) alone; default evaluates the pair.
+  Mat9 tangent(const Vec9& Z) const {
+    Vec9 Pi;
+    Mat9 A;
+    stress_and_tangent(Z, Pi, A);
+    return A;
+  }
+
+  /// A representative small-strain stiffness (Pa), used to scale tolerances.
+  virtual double stiffness_scale() const = 0;
+
+  /// Whether 𝔸 has major symmetry (true for every hyperelastic law).
+  virtual bool major_symmetric() const { return true; }
+
+  /// Serialization of parameters is by spec (materials are rebuilt from JSON).
+};
+
+using MaterialPtr = std::shared_ptr<const Material>;
+
+}  // namespace fe2

@@ -1,0 +1,24 @@
+#pragma once
+// A micro-unit mesh: 8-node hexahedra (VTK/Gmsh node order: bottom face
+// counter-clockwise seen from +z... i.e. 0:(-,-,-) 1:(+,-,-) 2:(+,+,-) 3:(-,+,-),
+// then 4..7 the same on the top face) with one material region per element.
+#include "common/tensor9.h"
+
+#include <array>
+#include <vector>
+
+namespace fe2 {
+
+struct HexMesh {
+  std::vector<Vec3> nodes;
+  std::vector<std::array<int, 8>> hexes;
+  std::vector<int> region;   ///< per hex: material region index (0-based)
+  Vec3 lo = Vec3::Zero();    ///< bounding box of the periodic cell Y
+  Vec3 hi = Vec3::Zero();
+
+  int num_nodes() const { return static_cast<int>(nodes.size()); }
+  int num_hexes() const { return static_cast<int>(hexes.size()); }
+  double volume() const { return (hi - lo).prod(); }
+};
+
+}  // namespace fe2

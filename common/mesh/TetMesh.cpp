@@ -1,0 +1,139 @@
+#include "common/mesh/TetMesh.h"
+
+#include "common/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fe2 {
+
+namespace {
+
+// Local node numbers of the four faces of a tet, face i opposite node i.
+constexpr std::array<std::array<int, 3>, 4> kTetFaces = {{{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}}};
+
+using FaceKey = std::array<int, 3>;
+
+FaceKey sorted_key(const std::array<int, 3>& tri) {
+  FaceKey k = tri;
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// The tets that own one face: at most two in a conforming mesh.
+struct FaceOwners {
+  int tet = -1;       ///< first tet found with this face
+  int opposite = -1;  ///< that tet's node opposite the face
+  int count = 0;
+};
+
+std::map<FaceKey, FaceOwners> build_face_map(const TetMesh& m) {
+  std::map<FaceKey, FaceOwners> faces;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const auto& t = m.tets[e];
+    for (int f = 0; f < 4; ++f) {
+      const auto& lf = kTetFaces[f];
+      FaceOwners& o = faces[sorted_key({t[lf[0]], t[lf[1]], t[lf[2]]})];
+      if (o.count++ == 0) {
+        o.tet = e;
+        o.opposite = t[f];
+      }
+    }
+  }
+  return faces;
+}
+
+void check_node_index(const TetMesh& m, int node, const std::string& source,
+                      const std::string& where) {
+  if (node < 0 || node >= m.num_nodes())
+    throw InputError(fmt::format("mesh '{}': {} refers to node {}, expected 0 <= node < {}",
+                                 source, where, node, m.num_nodes()));
+}
+
+void check_nodes_finite(const TetMesh& m, const std::string& source) {
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (!m.nodes[i].allFinite())
+      throw InputError(fmt::format("mesh '{}': node {} has coordinates ({}, {}, {}), expected finite numbers",
+                                   source, i, m.nodes[i].x(), m.nodes[i].y(), m.nodes[i].z()));
+}
+
+void check_tets(const TetMesh& m, const std::string& source) {
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const auto& t = m.tets[e];
+    for (int a = 0; a < 4; ++a) check_node_index(m, t[a], source, fmt::format("element {}", e));
+    const double v = tet_signed_volume(m, e);
+    if (!(v > 0.0))
+      throw InputError(fmt::format(
+          "mesh '{}': element {} (nodes {} {} {} {}) is inverted: signed volume {:.6g}, expected > 0",
+          source, e, t[0], t[1], t[2], t[3], v));
+  }
+}
+
+void check_regions(TetMesh& m, const std::string& source) {
+  // Generators may leave regions unset: everything is then region 1, as for files.
+  if (m.region.empty()) m.region.assign(m.tets.size(), 1);
+  if (m.region.size() != m.tets.size())
+    throw InputError(fmt::format("mesh '{}': {} region tags for {} elements, expected one per element",
+                                 source, m.region.size(), m.tets.size()));
+}
+
+std::vector<int> unique_nodes(const std::vector<std::array<int, 3>>& tris) {
+  std::vector<int> ids;
+  ids.reserve(3 * tris.size());
+  for (const auto& t : tris) ids.insert(ids.end(), t.begin(), t.end());
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+}  // namespace
+
+double tet_signed_volume(const TetMesh& m, int e) {
+  const auto& t = m.tets[e];
+  const Vec3& x0 = m.nodes[t[0]];
+  return (m.nodes[t[1]] - x0).dot((m.nodes[t[2]] - x0).cross(m.nodes[t[3]] - x0)) / 6.0;
+}
+
+void validate_mesh(TetMesh& m, const std::string& source) {
+  if (m.nodes.empty() || m.tets.empty())
+    throw InputError(fmt::format("mesh '{}': {} nodes and {} tetrahedra, expected a non-empty mesh",
+                                 source, m.nodes.size(), m.tets.size()));
+  check_nodes_finite(m, source);
+  check_tets(m, source);
+  check_regions(m, source);
+  for (auto& [name, tris] : m.faces)
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (int n : tris[i]) check_node_index(m, n, source, fmt::format("face '{}' triangle {}", name, i));
+  for (auto& [name, ids] : m.node_sets)
+    for (int n : ids) check_node_index(m, n, source, fmt::format("node set '{}'", name));
+  // An explicitly given node set wins over the one derived from a face of the same name.
+  for (const auto& [name, tris] : m.faces)
+    if (!m.node_sets.count(name)) m.node_sets[name] = unique_nodes(tris);
+}
+
+void orient_faces_outward(TetMesh& m, const std::string& source) {
+  if (m.faces.empty()) return;
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int n : m.tets[e]) check_node_index(m, n, source, fmt::format("element {}", e));
+  const auto face_map = build_face_map(m);
+  for (auto& [name, tris] : m.faces) {
+    for (std::size_t i = 0; i < tris.size(); ++i) {
+      auto& tri = tris[i];
+      const auto it = face_map.find(sorted_key(tri));
+      if (it == face_map.end())
+        throw InputError(fmt::format("mesh '{}': face '{}' triangle {} (nodes {} {} {}) is not a face of any "
+                                     "tetrahedron, expected a boundary face of the volume mesh",
+                                     source, name, i, tri[0], tri[1], tri[2]));
+      if (it->second.count != 1)
+        throw InputError(fmt::format("mesh '{}': face '{}' triangle {} (nodes {} {} {}) is shared by {} "
+                                     "tetrahedra, expected a boundary face (interior surfaces have no outside)",
+                                     source, name, i, tri[0], tri[1], tri[2], it->second.count));
+      // Outward means the right-hand normal points away from the tet's fourth node.
+      const Vec3& x0 = m.nodes[tri[0]];
+      const Vec3 normal = (m.nodes[tri[1]] - x0).cross(m.nodes[tri[2]] - x0);
+      if (normal.dot(m.nodes[it->second.opposite] - x0) > 0.0) std::swap(tri[1], tri[2]);
+    }
+  }
+}
+
+}  // namespace fe2

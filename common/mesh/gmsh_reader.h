@@ -1,0 +1,30 @@
+#pragma once
+// Readers for ASCII Gmsh MSH 4.1 files (https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format).
+// Binary files, other versions and partitioned meshes are rejected with an InputError
+// that names the file, the line and what was expected. Sections other than
+// $MeshFormat, $PhysicalNames, $Entities, $Nodes and $Elements are skipped.
+#include "common/mesh/HexMesh.h"
+#include "common/mesh/TetMesh.h"
+
+#include <string>
+
+namespace fe2 {
+
+/// The macro mesh of a Gmsh file:
+///  - 4-node tetrahedra (type 4); region = first physical tag of their volume entity
+///    (1 if it has none); region_names = names of physical volumes;
+///  - 3-node triangles (type 2) on surface entities with a named physical group become
+///    faces[name] (oriented outward, see orient_faces_outward);
+///  - points (type 15) on named physical points and the nodes of 2-node lines (type 1)
+///    on named physical curves become node_sets[name].
+/// Nodes are those of the tets, renumbered 0.. in file order. Elements of other types
+/// are ignored. Throws InputError if there are no tets or a tet is inverted.
+TetMesh read_gmsh_tets(const std::string& file);
+
+/// A micro-unit mesh of a Gmsh file: 8-node hexahedra (type 5), region = 0-based
+/// index of the hex's physical volume tag among all physical volume tags of hex
+/// entities sorted ascending (0 for entities without one); lo/hi = bounding box of
+/// the hex nodes. Throws InputError if there are no hexes or one is inverted.
+HexMesh read_gmsh_hexes(const std::string& file);
+
+}  // namespace fe2

@@ -1,0 +1,254 @@
+#include "common/spec/SpecNode.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace fe2 {
+
+namespace {
+
+std::string show(const json& v) {
+  std::string s = v.dump();
+  return s.size() > 80 ? s.substr(0, 77) + "..." : s;
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+template <class T>
+std::string show_default(const std::optional<T>& def) {
+  if (!def) return "required";
+  return "default " + json(*def).dump();
+}
+
+}  // namespace
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  const bool lo_ok = lo_open ? v > lo : v >= lo;
+  const bool hi_ok = hi_open ? v < hi : v <= hi;
+  return lo_ok && hi_ok;
+}
+
+std::string Range::describe() const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (has_lo && has_hi)
+    return fmt::format("in {}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+  if (has_lo) return fmt::format("{} {}", lo_open ? ">" : ">=", lo);
+  if (has_hi) return fmt::format("{} {}", hi_open ? "<" : "<=", hi);
+  return "finite";
+}
+
+std::string closest_match(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const size_t d = edit_distance(word, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  return best;
+}
+
+const json& SpecNode::empty_object() {
+  static const json e = json::object();
+  return e;
+}
+
+SpecNode::SpecNode(const json& j, std::string path, SpecDoc* doc)
+    : j_(&j), path_(std::move(path)), doc_(doc) {
+  if (!j.is_object())
+    throw InputError(fmt::format("{}: got {}, expected an object", path_.empty() ? "/" : path_,
+                                 show(j)));
+}
+
+std::string SpecNode::key_path(const std::string& key) const { return path_ + "/" + key; }
+
+bool SpecNode::has(const std::string& key) const { return j_->contains(key); }
+
+const json* SpecNode::lookup(const std::string& key) const {
+  auto it = j_->find(key);
+  return it == j_->end() ? nullptr : &*it;
+}
+
+void SpecNode::declare(const std::string& key, const std::string& type, const std::string& def,
+                       const std::string& help) {
+  declared_.push_back(key);
+  if (doc_) doc_->entries[key_path(key)] = fmt::format("{} ({}): {}", type, def, help);
+}
+
+void SpecNode::fail(const std::string& key, const std::string& expected) const {
+  const json* v = lookup(key);
+  throw InputError(fmt::format("{}: got {}, expected {}", key_path(key),
+                               v ? show(*v) : std::string("nothing (key missing)"), expected));
+}
+
+double SpecNode::number(const std::string& key, std::optional<double> def, Range range,
+                        const std::string& help) {
+  declare(key, "number " + range.describe(), show_default(def), help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, "a number " + range.describe() + " (" + help + ")");
+    return *def;
+  }
+  if (!v->is_number()) fail(key, "a number " + range.describe() + " (" + help + ")");
+  const double x = v->get<double>();
+  if (!range.contains(x)) fail(key, "a number " + range.describe() + " (" + help + ")");
+  return x;
+}
+
+int SpecNode::integer(const std::string& key, std::optional<int> def, Range range,
+                      const std::string& help) {
+  declare(key, "integer " + range.describe(), show_default(def), help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, "an integer " + range.describe() + " (" + help + ")");
+    return *def;
+  }
+  if (!v->is_number_integer() || !range.contains(v->get<double>()))
+    fail(key, "an integer " + range.describe() + " (" + help + ")");
+  return v->get<int>();
+}
+
+bool SpecNode::boolean(const std::string& key, std::optional<bool> def, const std::string& help) {
+  declare(key, "boolean", show_default(def), help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, "true or false (" + help + ")");
+    return *def;
+  }
+  if (!v->is_boolean()) fail(key, "true or false (" + help + ")");
+  return v->get<bool>();
+}
+
+std::string SpecNode::string(const std::string& key, std::optional<std::string> def,
+                             const std::string& help) {
+  declare(key, "string", show_default(def), help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, "a string (" + help + ")");
+    return *def;
+  }
+  if (!v->is_string()) fail(key, "a string (" + help + ")");
+  return v->get<std::string>();
+}
+
+std::string SpecNode::choice(const std::string& key, std::optional<std::string> def,
+                             const std::vector<std::string>& choices, const std::string& help) {
+  const std::string allowed = "one of \"" + join(choices, "\", \"") + "\"";
+  declare(key, allowed, show_default(def), help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, allowed + " (" + help + ")");
+    return *def;
+  }
+  if (!v->is_string()) fail(key, allowed);
+  const std::string s = v->get<std::string>();
+  if (std::find(choices.begin(), choices.end(), s) == choices.end()) {
+    const std::string guess = closest_match(s, choices);
+    fail(key, allowed + (guess.empty() ? "" : "; did you mean \"" + guess + "\"?"));
+  }
+  return s;
+}
+
+std::vector<double> SpecNode::numbers(const std::string& key, int size,
+                                      std::optional<std::vector<double>> def,
+                                      const std::string& help) {
+  const std::string what =
+      size >= 0 ? fmt::format("an array of {} numbers", size) : "a non-empty array of numbers";
+  declare(key, what, def ? "default " + json(*def).dump() : "required", help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (!def) fail(key, what + " (" + help + ")");
+    return *def;
+  }
+  if (!v->is_array() || (size >= 0 && static_cast<int>(v->size()) != size) || v->empty())
+    fail(key, what + " (" + help + ")");
+  std::vector<double> out;
+  for (const auto& x : *v) {
+    if (!x.is_number() || !std::isfinite(x.get<double>())) fail(key, what + " (" + help + ")");
+    out.push_back(x.get<double>());
+  }
+  return out;
+}
+
+SpecNode SpecNode::child(const std::string& key, bool required, const std::string& help) {
+  declare(key, "object", required ? "required" : "optional", help);
+  const json* v = lookup(key);
+  if (!v) {
+    if (required) fail(key, "an object (" + help + ")");
+    return SpecNode(empty_object(), key_path(key), doc_);
+  }
+  if (!v->is_object()) fail(key, "an object (" + help + ")");
+  return SpecNode(*v, key_path(key), doc_);
+}
+
+std::vector<std::string> SpecNode::names(const std::string& key, const std::string& help) const {
+  const_cast<SpecNode*>(this)->declare(key, "object of named entries", "optional", help);
+  std::vector<std::string> out;
+  const json* v = lookup(key);
+  if (!v) return out;
+  if (!v->is_object()) fail(key, "an object of named entries (" + help + ")");
+  for (auto it = v->begin(); it != v->end(); ++it) out.push_back(it.key());
+  return out;
+}
+
+std::vector<SpecNode> SpecNode::children(const std::string& key, bool required,
+                                         const std::string& help) {
+  declare(key, "array of objects", required ? "required" : "optional", help);
+  std::vector<SpecNode> out;
+  const json* v = lookup(key);
+  if (!v) {
+    if (required) fail(key, "an array of objects (" + help + ")");
+    return out;
+  }
+  if (!v->is_array()) fail(key, "an array of objects (" + help + ")");
+  for (size_t i = 0; i < v->size(); ++i)
+    out.emplace_back((*v)[i], key_path(key) + "/" + std::to_string(i), doc_);
+  return out;
+}
+
+const json* SpecNode::declared_value(const std::string& key, const std::string& type,
+                                     const std::string& help) {
+  declare(key, type, "optional", help);
+  return lookup(key);
+}
+
+void SpecNode::finish() const {
+  for (auto it = j_->begin(); it != j_->end(); ++it) {
+    if (std::find(declared_.begin(), declared_.end(), it.key()) != declared_.end()) continue;
+    const std::string guess = closest_match(it.key(), declared_);
+    throw InputError(fmt::format("unknown key '{}' in {}{}; known keys: {}", it.key(),
+                                 path_.empty() ? "/" : path_,
+                                 guess.empty() ? "" : "; did you mean '" + guess + "'?",
+                                 join(declared_, ", ")));
+  }
+}
+
+json read_json_file(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("cannot open spec file '{}'", file));
+  try {
+    return json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw InputError(fmt::format("spec file '{}' is not valid JSON: {}", file, e.what()));
+  }
+}
+
+}  // namespace fe2

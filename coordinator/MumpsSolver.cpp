@@ -1,0 +1,69 @@
+#include "coordinator/MumpsSolver.h"
+
+#include "common/error.h"
+
+namespace fe2 {
+
+// MUMPS documents its controls 1-based.
+#define ICNTL(k) icntl[(k)-1]
+#define INFOG(k) infog[(k)-1]
+
+MumpsSolver::MumpsSolver(MPI_Comm comm, int n) : n_(n) {
+  id_.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
+  id_.par = 1;  // the host takes part in the factorization
+  id_.sym = 0;  // unsymmetric
+  run(-1, "initialization");
+  id_.ICNTL(1) = -1;  // no error/diagnostic/global output: we report INFOG ourselves
+  id_.ICNTL(2) = -1;
+  id_.ICNTL(3) = -1;
+  id_.ICNTL(4) = 0;
+  id_.ICNTL(5) = 0;   // assembled
+  id_.ICNTL(18) = 3;  // distributed assembled input
+  id_.ICNTL(14) = 50; // workspace margin for pivoting (percent)
+}
+
+MumpsSolver::~MumpsSolver() {
+  id_.job = -2;
+  dmumps_c(&id_);
+}
+
+void MumpsSolver::run(int job, const char* what) {
+  id_.job = job;
+  dmumps_c(&id_);
+  if (id_.INFOG(1) < 0)
+    throw NumericalError(fmt::format("MUMPS {} failed: INFOG(1) = {}, INFOG(2) = {}{}", what,
+                                     id_.INFOG(1), id_.INFOG(2),
+                                     id_.INFOG(1) == -10 ? " (the macro system is singular: "
+                                                           "check the Dirichlet conditions)"
+                                                         : ""));
+}
+
+void MumpsSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
+  FE2_CHECK(rows.size() == cols.size(), "triplet arrays differ in length");
+  irn_ = std::move(rows);
+  jcn_ = std::move(cols);
+  for (auto& r : irn_) ++r;  // MUMPS is 1-based
+  for (auto& c : jcn_) ++c;
+  a_.assign(irn_.size(), 0.0);
+  id_.n = n_;
+  id_.nnz_loc = static_cast<MUMPS_INT8>(irn_.size());
+  id_.irn_loc = irn_.data();
+  id_.jcn_loc = jcn_.data();
+  id_.a_loc = a_.data();
+  run(1, "analysis");
+  analysed_ = true;
+}
+
+void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs) {
+  FE2_CHECK(analysed_, "set_pattern first");
+  FE2_CHECK(values.size() == a_.size(), "{} values for {} triplets", values.size(), a_.size());
+  a_ = values;
+  id_.a_loc = a_.data();
+  run(2, "factorization");
+  id_.rhs = rhs.data();
+  id_.nrhs = 1;
+  id_.lrhs = n_;
+  run(3, "solve");
+}
+
+}  // namespace fe2

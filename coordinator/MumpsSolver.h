@@ -1,0 +1,41 @@
+#pragma once
+// The macro Schur system S̄ Δū = ḡ (Eq. 10) solved by MUMPS with distributed
+// assembled input (ICNTL(18) = 3) on the communicator it is handed: each rank passes
+// its own triplets (duplicates are summed by MUMPS). The pattern is given once; the
+// analysis is done once and reused while the pattern holds; every call to
+// factorize_and_solve only refactors. S̄ is unsymmetric in general (follower loads).
+// Every MUMPS status is checked: INFOG(1) < 0 is an error naming INFOG(1), INFOG(2).
+#include <dmumps_c.h>
+#include <mpi.h>
+
+#include <vector>
+
+namespace fe2 {
+
+class MumpsSolver {
+ public:
+  /// @note Collective on `comm` (lent; must outlive this object).
+  MumpsSolver(MPI_Comm comm, int n);
+  ~MumpsSolver();
+  MumpsSolver(const MumpsSolver&) = delete;
+  MumpsSolver& operator=(const MumpsSolver&) = delete;
+
+  /// This rank's triplets, 0-based (row, col); fixes the pattern and runs the analysis.
+  /// @note Collective.
+  void set_pattern(std::vector<int> rows, std::vector<int> cols);
+  /// Values in the order of the pattern's triplets; `rhs` (length n, significant on rank
+  /// 0 of comm) is overwritten with the solution on rank 0. @note Collective.
+  void factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs);
+
+  int size() const { return n_; }
+
+ private:
+  void run(int job, const char* what);
+  DMUMPS_STRUC_C id_{};
+  int n_;
+  std::vector<int> irn_, jcn_;
+  std::vector<double> a_;
+  bool analysed_ = false;
+};
+
+}  // namespace fe2

@@ -1,0 +1,38 @@
+#pragma once
+// Evaluates one Newton iteration at every macro integration point: jobs in, results
+// out, indexed by point. The one-process form (LocalEvaluator) runs the points in a
+// loop; the MPI task farm implements the same interface across worker ranks.
+#include "proto/job.h"
+#include "worker/point_models.h"
+
+#include <vector>
+
+namespace fe2 {
+
+class PointEvaluator {
+ public:
+  virtual ~PointEvaluator() = default;
+  /// out[k] answers jobs[k]. Throws NumericalError if any point fails.
+  virtual void evaluate(const std::vector<proto::JobInput>& jobs,
+                        std::vector<proto::JobOutput>& out) = 0;
+  virtual void commit_step() = 0;
+  virtual void rollback_step() = 0;
+};
+
+/// All points on this process, evaluated in order.
+class LocalEvaluator final : public PointEvaluator {
+ public:
+  /// One point per entry of `model_of_point` (an index into `models`).
+  LocalEvaluator(const std::vector<PointModelSpec>& models, const std::vector<int>& model_of_point);
+  void evaluate(const std::vector<proto::JobInput>& jobs,
+                std::vector<proto::JobOutput>& out) override;
+  void commit_step() override;
+  void rollback_step() override;
+  PointModel& point(int k) { return *points_[k]; }
+  int size() const { return static_cast<int>(points_.size()); }
+
+ private:
+  std::vector<PointModelPtr> points_;
+};
+
+}  // namespace fe2

@@ -1,0 +1,274 @@
+#include "coordinator/RunSpec.h"
+
+#include "common/materials/material_factory.h"
+#include "common/mesh/box_mesh.h"
+#include "common/mesh/gmsh_reader.h"
+#include "common/mesh/point_locator.h"
+
+#include <cmath>
+#include <filesystem>
+
+namespace fe2 {
+
+double ramp_factor(Ramp ramp, double t, double t_end) {
+  return ramp == Ramp::constant ? 1.0 : t / t_end;
+}
+
+Mat3 FrameSpec::at(const Vec3& X) const {
+  Vec3 f = fibre, s = sheet;
+  if (rotating) {
+    const double xi = std::clamp((X.dot(coordinate) - c0) / (c1 - c0), 0.0, 1.0);
+    const Eigen::AngleAxisd rot(angle0 + xi * (angle1 - angle0), axis);
+    f = rot * f;
+    s = rot * s;
+  }
+  Mat3 Q;
+  Q.col(0) = f;
+  Q.col(1) = s;
+  Q.col(2) = f.cross(s);
+  return Q;
+}
+
+int RunSpec::model_index_of_tet(int e) const {
+  auto it = model_of_region.find(mesh.region[e]);
+  return it == model_of_region.end() ? default_model : it->second;
+}
+
+namespace {
+
+Vec3 vec3(SpecNode& s, const std::string& key, std::optional<Vec3> def, const std::string& help) {
+  std::optional<std::vector<double>> d;
+  if (def) d = std::vector<double>{(*def)[0], (*def)[1], (*def)[2]};
+  const auto v = s.numbers(key, 3, d, help);
+  return Vec3(v[0], v[1], v[2]);
+}
+
+Vec3 unit_vec3(SpecNode& s, const std::string& key, Vec3 def, const std::string& help) {
+  const Vec3 v = vec3(s, key, def, help);
+  if (!(v.norm() > 0)) s.fail(key, "a non-zero vector");
+  return v.normalized();
+}
+
+Ramp read_ramp(SpecNode& s) {
+  return s.choice("ramp", "linear", {"linear", "constant"},
+                  "value(t) = value·t/t_end (linear) or value (constant)") == "linear"
+             ? Ramp::linear
+             : Ramp::constant;
+}
+
+int axis_index(const std::string& a) { return a[0] - 'x'; }
+
+void read_mesh(SpecNode m, RunSpec& spec) {
+  const std::string kind = m.choice("kind", "box", {"box", "gmsh"},
+                                    "structured box of tetrahedra, or a Gmsh 4.1 file");
+  if (kind == "box") {
+    const Vec3 lo = vec3(m, "lo", Vec3::Zero(), "lower corner");
+    const Vec3 hi = vec3(m, "hi", std::nullopt, "upper corner");
+    const auto div = m.numbers("divisions", 3, std::nullopt, "cells per axis (6 tets per cell)");
+    std::array<int, 3> d{};
+    for (int i = 0; i < 3; ++i) {
+      if (!(div[i] >= 1 && div[i] <= 1000 && div[i] == std::floor(div[i])))
+        m.fail("divisions", "three integers in [1, 1000]");
+      d[i] = static_cast<int>(div[i]);
+    }
+    for (int i = 0; i < 3; ++i)
+      if (!(hi[i] > lo[i])) m.fail("hi", "a corner above 'lo' in every axis");
+    SpecNode slabs = m.child("region_slabs", false,
+                             "split the box into equal slabs with region tags 1..count");
+    const int axis = axis_index(slabs.choice("axis", "x", {"x", "y", "z"}, "slab normal"));
+    const int count = slabs.integer("count", 1, Range::closed(1, 1000), "number of slabs");
+    slabs.finish();
+    spec.mesh = make_box_mesh(lo, hi, d, count > 1 ? axis : -1, count);
+    spec.mesh_source = "box generator";
+  } else {
+    std::filesystem::path p = m.string("file", std::nullopt, "Gmsh 4.1 ASCII mesh file");
+    if (p.is_relative()) p = std::filesystem::path(spec.base_dir) / p;
+    spec.mesh = read_gmsh_tets(p.string());
+    spec.mesh_source = p.string();
+  }
+  m.finish();
+}
+
+void read_frame(SpecNode f, RunSpec& spec) {
+  FrameSpec& fr = spec.frame;
+  const std::string kind = f.choice("kind", "constant", {"constant", "rotating"},
+                                    "fibre frame rule");
+  fr.fibre = unit_vec3(f, "fibre", Vec3::UnitX(), "fibre direction f (unit axis 1)");
+  const Vec3 s = unit_vec3(f, "sheet", Vec3::UnitY(), "sheet direction s (unit axis 2)");
+  fr.sheet = (s - s.dot(fr.fibre) * fr.fibre);
+  if (!(fr.sheet.norm() > 1e-8)) f.fail("sheet", "a direction not parallel to 'fibre'");
+  fr.sheet.normalize();
+  if (kind == "rotating") {
+    fr.rotating = true;
+    fr.axis = unit_vec3(f, "axis", Vec3::UnitZ(), "rotation axis of the fibres");
+    fr.coordinate = unit_vec3(f, "coordinate", Vec3::UnitY(),
+                              "direction along which the angle varies (transmural)");
+    const auto from = f.numbers("from", 2, std::nullopt, "[coordinate, angle in degrees]");
+    const auto to = f.numbers("to", 2, std::nullopt, "[coordinate, angle in degrees]");
+    if (!(to[0] != from[0])) f.fail("to", "a coordinate different from 'from'");
+    fr.c0 = from[0];
+    fr.c1 = to[0];
+    fr.angle0 = from[1] * M_PI / 180.0;
+    fr.angle1 = to[1] * M_PI / 180.0;
+  }
+  f.finish();
+}
+
+void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
+  const auto names = [&] {
+    std::vector<std::string> n;
+    for (auto it = models.raw().begin(); it != models.raw().end(); ++it) n.push_back(it.key());
+    return n;
+  }();
+  if (names.empty())
+    throw InputError(fmt::format("{}: got {{}}, expected at least one point model, e.g. "
+                                 "{{\"muscle\": {{\"kind\": \"macro_law\", \"material\": ...}}}}",
+                                 models.path()));
+  for (const auto& name : names) {
+    SpecNode m = models.child(name, true, "a point model");
+    PointModelSpec pm;
+    pm.name = name;
+    const std::string kind = m.choice("kind", std::nullopt, {"fe2", "macro_law"},
+                                      "FE² micro unit per point, or the macro law itself");
+    if (kind == "fe2") {
+      pm.kind = PointModelSpec::Kind::fe2;
+      pm.micro = MicroModel::from_spec(m.child("unit", true, "the micro unit"), spec.base_dir);
+    } else {
+      pm.kind = PointModelSpec::Kind::macro_law;
+      SpecNode mat = m.child("material", true, "constitutive law");
+      pm.material = make_material(mat);
+    }
+    m.finish();
+    spec.models.push_back(std::move(pm));
+  }
+  auto index_of = [&](SpecNode& node, const std::string& key, const std::string& name) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return static_cast<int>(i);
+    const std::string guess = closest_match(name, names);
+    node.fail(key, "the name of a model in /models" +
+                       (guess.empty() ? std::string() : "; did you mean \"" + guess + "\"?"));
+  };
+  const std::string def = assign.string("default", names.front(), "model of every element");
+  spec.default_model = index_of(assign, "default", def);
+  SpecNode regions = assign.child("regions", false, "region tag -> model name");
+  for (auto it = regions.raw().begin(); it != regions.raw().end(); ++it) {
+    const std::string tag = it.key();
+    const std::string model = regions.string(tag, std::nullopt, "model for this region tag");
+    char* end = nullptr;
+    const long t = std::strtol(tag.c_str(), &end, 10);
+    int found = -1;
+    if (end && *end == '\0') found = static_cast<int>(t);
+    for (const auto& [rt, rn] : spec.mesh.region_names)
+      if (rn == tag) found = rt;
+    if (found < 0)
+      throw InputError(fmt::format("{}/{}: got a region that is neither a number nor a named "
+                                   "physical volume of the mesh",
+                                   regions.path(), tag));
+    spec.model_of_region[found] = index_of(regions, tag, model);
+  }
+  regions.finish();
+  assign.finish();
+}
+
+}  // namespace
+
+RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
+  RunSpec spec;
+  spec.file = file;
+  spec.raw = j;
+  spec.base_dir = file.empty() ? "." : std::filesystem::path(file).parent_path().string();
+  if (spec.base_dir.empty()) spec.base_dir = ".";
+  SpecNode root(j, "", doc);
+  spec.title = root.string("title", "", "one line saying what this scene solves");
+  root.string("description", "", "what the scene shows and how to view it");
+  read_mesh(root.child("mesh", true, "macro mesh"), spec);
+  read_frame(root.child("frame", false, "material frame (fibre, sheet, normal)"), spec);
+  read_models(root.child("models", true, "point models by name"),
+              root.child("assign", false, "which model each element uses"), spec);
+
+  for (auto& d : root.children("dirichlet", false, "prescribed displacements on node sets")) {
+    DirichletSpec ds;
+    ds.set = d.string("set", std::nullopt, "named node set or face");
+    if (!spec.mesh.node_sets.count(ds.set)) {
+      std::vector<std::string> known;
+      for (const auto& [n, _] : spec.mesh.node_sets) known.push_back(n);
+      const std::string guess = closest_match(ds.set, known);
+      d.fail("set", "a node set of the mesh (" + fmt::format("{}", fmt::join(known, ", ")) + ")" +
+                        (guess.empty() ? "" : "; did you mean \"" + guess + "\"?"));
+    }
+    const auto comps = d.numbers("components", -1, std::vector<double>{0, 1, 2},
+                                 "constrained components: any of 0 (x), 1 (y), 2 (z)");
+    ds.fixed = {false, false, false};
+    for (double c : comps) {
+      if (!(c == 0 || c == 1 || c == 2)) d.fail("components", "components among 0, 1, 2");
+      ds.fixed[static_cast<int>(c)] = true;
+    }
+    ds.value = vec3(d, "value", Vec3::Zero(), "prescribed displacement at t_end");
+    ds.ramp = read_ramp(d);
+    d.finish();
+    spec.dirichlet.push_back(ds);
+  }
+  if (spec.dirichlet.empty())
+    throw InputError("/dirichlet: got nothing, expected at least one Dirichlet condition "
+                     "(a free body has no unique quasi-static solution)");
+  for (auto& p : root.children("pressure", false, "follower pressure on named surfaces")) {
+    PressureSpec ps;
+    ps.surface = p.string("surface", std::nullopt, "named boundary surface");
+    if (!spec.mesh.faces.count(ps.surface)) {
+      std::vector<std::string> known;
+      for (const auto& [n, _] : spec.mesh.faces) known.push_back(n);
+      p.fail("surface", "a named surface of the mesh (" + fmt::format("{}", fmt::join(known, ", ")) + ")");
+    }
+    ps.value = p.number("value", std::nullopt, Range::any(), "pressure at t_end (Pa)");
+    ps.ramp = read_ramp(p);
+    p.finish();
+    spec.pressure.push_back(ps);
+  }
+
+  SpecNode t = root.child("time", false, "time stepping");
+  spec.t_end = t.number("t_end", 1.0, Range::positive(), "end time");
+  spec.steps = t.integer("steps", 1, Range::closed(1, 1e7), "number of steps");
+  spec.dynamic = t.choice("scheme", "quasi_static", {"quasi_static", "newmark"},
+                          "quasi-static load stepping or Newmark-β dynamics") == "newmark";
+  spec.beta = t.number("beta", 0.25, Range{0.0, 0.5, true, false}, "Newmark β");
+  spec.gamma = t.number("gamma", 0.5, Range::closed(0.0, 1.0), "Newmark γ");
+  spec.density = t.number("density", 1000.0, Range::positive(), "mass density (Newmark)");
+  t.finish();
+
+  SpecNode n = root.child("newton", false, "Newton–Raphson");
+  spec.newton_max_iterations = n.integer("max_iterations", 20, Range::closed(1, 1000),
+                                         "iterations per step before a cutback");
+  spec.newton_rtol = n.number("rtol", 1e-8, Range{0.0, 1.0, true, true},
+                              "macro residual / max(‖f_int‖, ‖f_ext‖)");
+  spec.micro_rtol = n.number("micro_rtol", 1e-8, Range{0.0, 1.0, true, true},
+                             "unit residual ‖r‖ / r_ref");
+  spec.max_cutbacks = n.integer("max_cutbacks", 4, Range::closed(0, 30),
+                                "step halvings before giving up");
+  n.finish();
+
+  SpecNode probes = root.child("probes", false, "named material points to report");
+  for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {
+    const std::string name = it.key();
+    const Vec3 X = vec3(probes, name, std::nullopt, "reference position");
+    try {
+      locate_point(spec.mesh, X);
+    } catch (const InputError&) {
+      probes.fail(name, "a point inside the mesh");
+    }
+    spec.probes.emplace_back(name, X);
+  }
+  probes.finish();
+
+  SpecNode out = root.child("output", false, "results");
+  spec.output_every = out.integer("every", 1, Range::closed(1, 1e7), "write every k-th step");
+  spec.write_vtu = out.boolean("vtu", true, "write VTU/PVD for ParaView");
+  out.finish();
+  root.finish();
+  return spec;
+}
+
+RunSpec read_run_spec_file(const std::string& file) {
+  return read_run_spec(read_json_file(file), file);
+}
+
+}  // namespace fe2

@@ -1,0 +1,89 @@
+#pragma once
+// A run spec (`fe2heart run SPEC.json`), read and checked in one place: every key is
+// declared with its default, range and help (common/spec/SpecNode.h), so the same code
+// validates (`fe2heart validate`) and documents (`fe2heart spec-doc`).
+//
+// A scene names its effects; an effect that is off allocates and assembles nothing:
+//   point models (FE² units or the macro law, per region), Dirichlet conditions,
+//   follower pressure, inertia (Newmark), probes.
+#include "common/materials/Material.h"
+#include "common/mesh/TetMesh.h"
+#include "common/spec/SpecNode.h"
+#include "worker/MicroModel.h"
+#include "worker/point_models.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+/// Load scaling in time: value(t) = value · λ(t).
+enum class Ramp { linear, constant };
+double ramp_factor(Ramp ramp, double t, double t_end);
+
+struct DirichletSpec {
+  std::string set;
+  std::array<bool, 3> fixed{true, true, true};
+  Vec3 value = Vec3::Zero();
+  Ramp ramp = Ramp::linear;
+};
+
+struct PressureSpec {
+  std::string surface;
+  double value = 0.0;  ///< Pa, acting against the outward normal of the solid
+  Ramp ramp = Ramp::linear;
+};
+
+/// Fibre frame rule: constant, or (f0, s0) rotated about `axis` by an angle varying
+/// linearly with X·coordinate between two planes (a transmural helix rule).
+struct FrameSpec {
+  Vec3 fibre = Vec3::UnitX();
+  Vec3 sheet = Vec3::UnitY();
+  bool rotating = false;
+  Vec3 axis = Vec3::UnitZ();
+  Vec3 coordinate = Vec3::UnitY();
+  double c0 = 0, c1 = 1, angle0 = 0, angle1 = 0;  ///< angles in radians
+  /// Orthonormal Q = [f s n] at X.
+  Mat3 at(const Vec3& X) const;
+};
+
+struct RunSpec {
+  std::string file;        ///< where it was read from ("" when built in code)
+  std::string base_dir;    ///< relative files resolve here
+  std::string title;
+  json raw;                ///< the whole spec (for the output folder and hashes)
+
+  TetMesh mesh;
+  std::string mesh_source;
+  FrameSpec frame;
+  std::vector<PointModelSpec> models;
+  std::map<int, int> model_of_region;  ///< region tag -> model index
+  int default_model = 0;
+
+  std::vector<DirichletSpec> dirichlet;
+  std::vector<PressureSpec> pressure;
+
+  double t_end = 1.0;
+  int steps = 1;
+  bool dynamic = false;    ///< Newmark-β with a mass matrix
+  double beta = 0.25, gamma = 0.5, density = 0.0;
+
+  int newton_max_iterations = 20;
+  double newton_rtol = 1e-8;      ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
+  double micro_rtol = 1e-8;       ///< each unit: ‖r‖ <= micro_rtol · r_ref
+  int max_cutbacks = 4;
+
+  std::vector<std::pair<std::string, Vec3>> probes;
+  int output_every = 1;
+  bool write_vtu = true;
+
+  int model_index_of_tet(int e) const;
+};
+
+/// Reads and checks a spec; every problem is an InputError naming the key.
+/// `doc`, if given, collects the declarations (for spec-doc).
+RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
+RunSpec read_run_spec_file(const std::string& file);
+
+}  // namespace fe2

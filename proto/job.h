@@ -1,0 +1,40 @@
+#pragma once
+// A job is one unit-iteration (DESIGN §3): in, the macro gradient and its rate in the
+// unit's frame plus step data; out, the unit's condensed contribution (𝔸_hom, P̃), the
+// true averaged stress P̄ for the convergence test, norms and measured cost.
+#include "common/tensor9.h"
+
+#include <cstdint>
+
+namespace fe2::proto {
+
+struct JobInput {
+  int32_t unit = -1;          ///< global unit (integration point) id
+  int32_t step = 0;           ///< time step index, from 0
+  int32_t iteration = 1;      ///< Newton iteration within the step, from 1
+  double time = 0.0;          ///< time at the end of the step
+  double dt = 0.0;
+  uint8_t apply_update = 0;   ///< apply the pending δw (Steps 1 and 4) before assembling
+  uint8_t force_refresh = 0;  ///< refactor K and recompute χ whatever the policy says
+  Vec9 Zbar = Vec9::Zero();       ///< Z̄_μ, macro displacement gradient in the unit frame
+  Vec9 Zbar_dot = Vec9::Zero();   ///< Ż̄_μ
+};
+
+enum class Refresh : uint8_t { reuse = 0, refresh = 1 };
+
+struct JobOutput {
+  int32_t unit = -1;
+  Mat9 A_hom = Mat9::Zero();  ///< Eq. (7): 𝔸_hom = Ā − Hχ
+  Vec9 P_tilde = Vec9::Zero();///< Eq. (9): P̃ = P̄ + H δw₁
+  Vec9 P_bar = Vec9::Zero();  ///< ⟨Π⟩ at the assembled state (true stress, for the residual)
+  double r_norm = 0.0;        ///< ‖r‖ of the micro out-of-balance force
+  double r_ref = 1.0;         ///< its scale: converged when r_norm <= rtol * r_ref
+  int32_t gmres_iterations = 0;
+  Refresh kind = Refresh::reuse;
+  double cpu_seconds = 0.0;   ///< whole job, thread CPU time
+  double cpu_assembly = 0.0;
+  double cpu_refresh = 0.0;   ///< factorization + characteristic modes
+  double cpu_solve = 0.0;     ///< Step 1 GMRES
+};
+
+}  // namespace fe2::proto

@@ -1,0 +1,12 @@
+// GoogleTest main that initializes MPI (MUMPS needs it even on one process). Test
+// order stays fixed (no shuffling) so every rank runs the same sequence.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}

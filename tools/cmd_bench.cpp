@@ -1,0 +1,99 @@
+// `fe2heart bench unit`: figures for one micro unit on one core (not a test).
+// Prints medians over --repeat runs of: assembly into the fixed pattern; one Newton
+// iteration with a cached (slightly stale) factor, i.e. assembly plus Step 1 GMRES
+// plus Eqs. (7), (9); a refresh (numeric factorization plus the 9 characteristic-mode
+// solves); and CHOLMOD's own numeric factorization of the same matrix for comparison.
+#include "common/cpu_timer.h"
+#include "common/materials/NeoHookean.h"
+#include "tools/commands.h"
+#include "worker/MicroUnit.h"
+#include "worker/micro_cell.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace fe2::cli {
+
+namespace {
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+}  // namespace
+
+int bench_unit(const BenchOptions& o) {
+  const int n = std::max(2, static_cast<int>(std::lround(std::cbrt(o.dofs / 3.0))));
+  CellLayout layout;
+  layout.kind = o.cell;
+  layout.size = Vec3(1.0, 1.0, 1.0);
+  layout.resolution = {n, n, n};
+  std::vector<MaterialPtr> mats = {std::make_shared<NeoHookean>(1.0e4, 0.45)};
+  if (o.cell != "homogeneous") mats.push_back(std::make_shared<NeoHookean>(1.0e5, 0.45));
+  MicroSolverOptions opt;
+  opt.refresh = MicroSolverOptions::Refresh::fixed;
+  opt.N_t = 1 << 30;  // refreshes only when the benchmark asks
+  opt.factorization = MicroSolverOptions::Factorization::cholesky;
+  auto model = std::make_shared<const MicroModel>(make_cell_mesh(layout), mats, opt, "bench");
+  MicroUnit unit(model);
+
+  Vec9 Z0 = Vec9::Zero();
+  Z0[0] = 0.05;  // 5 % fibre stretch
+  proto::JobInput job;
+  job.Zbar = Z0;
+  job.force_refresh = 1;
+  const double t_first = thread_cpu_seconds();
+  unit.iterate(job);  // symbolic analysis + first factorization
+  const double first_ms = 1e3 * (thread_cpu_seconds() - t_first);
+
+  std::vector<double> assembly, iteration, refresh, factorize, gmres_its;
+  MicroUnit::System sys;
+  sys.K = model->pattern();
+  auto cholmod = make_sparse_factor(FactorKind::cholesky);
+  cholmod->factorize(unit.system().K);  // its own analysis, excluded from the timing
+  for (int r = 0; r < o.repeat; ++r) {
+    double t = thread_cpu_seconds();
+    unit.assemble_at(unit.w(), Z0, sys);
+    assembly.push_back(1e3 * (thread_cpu_seconds() - t));
+
+    job.Zbar = Z0;
+    job.force_refresh = 1;
+    job.apply_update = 0;
+    refresh.push_back(1e3 * unit.iterate(job).cpu_refresh);
+
+    t = thread_cpu_seconds();
+    cholmod->factorize(unit.system().K);
+    factorize.push_back(1e3 * (thread_cpu_seconds() - t));
+
+    // A Newton iteration at a gradient the factor has not seen (+1 % stretch).
+    job.Zbar = Z0;
+    job.Zbar[0] += 0.01;
+    job.force_refresh = 0;
+    const proto::JobOutput out = unit.iterate(job);
+    iteration.push_back(1e3 * out.cpu_seconds);
+    gmres_its.push_back(out.gmres_iterations);
+  }
+  const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
+  const json j = {{"dofs", model->num_dofs()},
+                  {"elements", model->num_elements()},
+                  {"resolution", n},
+                  {"cell", o.cell},
+                  {"repeat", o.repeat},
+                  {"assembly_ms", median(assembly)},
+                  {"iteration_ms", median(iteration)},
+                  {"iteration_gmres_iterations", median(gmres_its)},
+                  {"refresh_ms", median(refresh)},
+                  {"cholmod_factorize_ms", median(factorize)},
+                  {"refresh_over_factorize", median(refresh) / median(factorize)},
+                  {"first_refresh_with_analysis_ms", first_ms},
+                  {"factor_MB", unit.factor()->factor_bytes() / 1e6},
+                  {"OPENBLAS_NUM_THREADS", blas ? blas : "unset"},
+                  {"timer", "thread CPU time"}};
+  fmt::print("{}\n", j.dump(2));
+  return 0;
+}
+
+}  // namespace fe2::cli

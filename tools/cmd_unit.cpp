@@ -1,0 +1,86 @@
+#include "common/io/vtu_writer.h"
+#include "tools/commands.h"
+#include "tools/unit_spec.h"
+#include "worker/unit_equilibrium.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+namespace fe2::cli {
+
+UnitSpec read_unit_spec(const json& j, const std::string& file) {
+  UnitSpec u;
+  std::string base = std::filesystem::path(file).parent_path().string();
+  SpecNode root(j, "");
+  root.string("title", "", "what this unit exploration shows");
+  root.string("description", "", "longer notes");
+  u.model = MicroModel::from_spec(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);
+  const bool one = root.has("Zbar"), path = root.has("Zbar_path");
+  if (one == path)
+    root.fail(one ? "Zbar_path" : "Zbar",
+              "exactly one of 'Zbar' (9 numbers) or 'Zbar_path' (an array of 9-number arrays)");
+  if (one) {
+    const auto z = root.numbers("Zbar", 9, std::nullopt, "macro displacement gradient, column-major");
+    u.path.push_back(Eigen::Map<const Vec9>(z.data()));
+  } else {
+    const json* arr = root.declared_value("Zbar_path", "array of 9-number arrays",
+                                          "macro gradients to equilibrate in turn");
+    const std::string what = "a non-empty array of arrays of 9 finite numbers";
+    if (!arr->is_array() || arr->empty()) root.fail("Zbar_path", what);
+    for (const auto& z : *arr) {
+      if (!z.is_array() || z.size() != 9) root.fail("Zbar_path", what);
+      Vec9 v;
+      for (int i = 0; i < 9; ++i) {
+        if (!z[i].is_number() || !std::isfinite(z[i].get<double>())) root.fail("Zbar_path", what);
+        v[i] = z[i].get<double>();
+      }
+      u.path.push_back(v);
+    }
+  }
+  SpecNode n = root.child("newton", false, "unit Newton iterations");
+  u.rtol = n.number("rtol", 1e-10, Range{0.0, 1.0, true, true}, "‖r‖ / r_ref to reach");
+  u.max_iterations = n.integer("max_iterations", 30, Range::closed(1, 1000), "iteration cap");
+  n.finish();
+  root.finish();
+  return u;
+}
+
+int unit(const UnitOptions& o) {
+  const UnitSpec spec = read_unit_spec(read_json_file(o.spec), o.spec);
+  MicroUnit unit(spec.model);
+  json results = json::array();
+  UnitEquilibrium last;
+  for (size_t s = 0; s < spec.path.size(); ++s) {
+    last = equilibrate(unit, spec.path[s], spec.rtol, spec.max_iterations, static_cast<int>(s));
+    results.push_back({{"Zbar", std::vector<double>(spec.path[s].data(), spec.path[s].data() + 9)},
+                       {"P_bar", std::vector<double>(last.P_bar.data(), last.P_bar.data() + 9)},
+                       {"A_hom", std::vector<double>(last.A_hom.data(), last.A_hom.data() + 81)},
+                       {"newton_iterations", last.newton_iterations},
+                       {"gmres_iterations", last.gmres_iterations},
+                       {"residuals", last.residuals}});
+  }
+  json out = results.back();
+  out["dofs"] = spec.model->num_dofs();
+  out["elements"] = spec.model->num_elements();
+  out["convention"] = "column-major 9-vectors (11,21,31,12,22,32,13,23,33); A_hom[r + 9c] = dP_r/dZ_c";
+  if (spec.path.size() > 1) out["path"] = results;
+  if (!o.vtu.empty()) {
+    const HexMesh& mesh = spec.model->mesh();
+    std::vector<Vec3> w(mesh.num_nodes(), Vec3::Zero());
+    for (int a = 0; a < mesh.num_nodes(); ++a)
+      for (int i = 0; i < 3; ++i) {
+        const int d = spec.model->dofs().dof(a, i);
+        w[a][i] = d >= 0 ? unit.w()[d] : 0.0;
+      }
+    VtuFields point, cell;
+    point.add_vector("w", w);
+    std::vector<double> region(mesh.region.begin(), mesh.region.end());
+    cell.add_scalar("region", region);
+    write_vtu(o.vtu, mesh, point, cell);
+  }
+  fmt::print("{}\n", out.dump(2));
+  return 0;
+}
+
+}  // namespace fe2::cli

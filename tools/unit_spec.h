@@ -1,0 +1,21 @@
+#pragma once
+// The spec of `fe2heart unit`: a unit, the macro gradient(s) to equilibrate it under,
+// and the unit's Newton tolerance.
+#include "common/spec/SpecNode.h"
+#include "worker/MicroModel.h"
+
+#include <filesystem>
+#include <vector>
+
+namespace fe2::cli {
+
+struct UnitSpec {
+  MicroModelPtr model;
+  std::vector<Vec9> path;
+  double rtol = 1e-10;
+  int max_iterations = 30;
+};
+
+UnitSpec read_unit_spec(const json& j, const std::string& file);
+
+}  // namespace fe2::cli

@@ -1,0 +1,189 @@
+#include "worker/MicroModel.h"
+
+#include "common/error.h"
+#include "common/materials/material_factory.h"
+#include "common/mesh/gmsh_reader.h"
+#include "worker/micro_cell.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+namespace fe2 {
+
+MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
+  MicroSolverOptions o;
+  const std::string f = s.choice("factorization", "auto", {"cholesky", "lu", "auto"},
+                                 "factor of K: CHOLMOD LLᵀ, UMFPACK LU, or LLᵀ while K is "
+                                 "symmetric positive definite and LU otherwise");
+  o.factorization = f == "cholesky" ? Factorization::cholesky
+                    : f == "lu"     ? Factorization::lu
+                                    : Factorization::automatic;
+  const std::string r = s.choice("refresh", "fixed", {"every_iteration", "fixed", "adaptive"},
+                                 "when to refactor K and recompute χ: every Newton iteration; "
+                                 "at iteration 1 of every N_t-th step (paper Fig. 6); or when "
+                                 "the extra GMRES work since the last refresh has cost as "
+                                 "much as a refresh");
+  o.refresh = r == "every_iteration" ? Refresh::every_iteration
+              : r == "fixed"         ? Refresh::fixed
+                                     : Refresh::adaptive;
+  o.N_t = s.integer("N_t", 10, Range::closed(1, 1e6), "refresh period in steps (fixed policy)");
+  o.step4 = s.boolean("step4", true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves");
+  o.gmres_rtol = s.number("gmres_rtol", 1e-10, Range{0.0, 1.0, true, true},
+                          "Step 1 relative residual tolerance");
+  o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");
+  o.gmres_max_iterations =
+      s.integer("gmres_max_iterations", 500, Range::closed(1, 1e6), "GMRES iteration cap");
+  s.finish();
+  return o;
+}
+
+std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::string& base_dir) {
+  CellLayout c;
+  c.kind = s.choice("cell", "two_cells", {"two_cells", "homogeneous", "laminate", "mesh_file"},
+                    "cell geometry: built-in layouts or a Gmsh hex mesh");
+  HexMesh mesh;
+  std::vector<std::string> region_names;
+  if (c.kind == "mesh_file") {
+    std::filesystem::path p = s.string("mesh_file", std::nullopt, "Gmsh 4.1 hex mesh of the cell");
+    if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
+    mesh = read_gmsh_hexes(p.string());
+    const int nreg = *std::max_element(mesh.region.begin(), mesh.region.end()) + 1;
+    for (int r = 0; r < nreg; ++r) region_names.push_back(std::to_string(r));
+  } else {
+    const auto size = s.numbers("size", 3, std::vector<double>{1.0, 0.25, 0.25},
+                                "cell edge lengths L1 (fibre), L2, L3");
+    for (int d = 0; d < 3; ++d) {
+      if (!(size[d] > 0)) s.fail("size", "three positive lengths");
+      c.size[d] = size[d];
+    }
+    const auto res = s.numbers("resolution", 3, std::vector<double>{8, 4, 4},
+                               "hexahedra per axis");
+    for (int d = 0; d < 3; ++d) {
+      if (!(res[d] >= 1 && res[d] <= 1000 && res[d] == std::floor(res[d])))
+        s.fail("resolution", "three integers in [1, 1000]");
+      c.resolution[d] = static_cast<int>(res[d]);
+    }
+    if (c.kind == "laminate") {
+      c.fraction = s.number("fraction", 0.5, Range{0.0, 1.0, true, true},
+                            "volume fraction of phase a");
+      const std::string ax = s.choice("axis", "x", {"x", "y", "z"}, "layer normal");
+      c.axis = ax[0] - 'x';
+      region_names = {"a", "b"};
+    } else if (c.kind == "two_cells") {
+      c.gap = s.number("gap", 0.1, Range{0.0, 0.5, true, true},
+                       "ECM gap per cell, as a fraction of L1");
+      c.cross_section = s.number("cross_section", 0.75, Range{0.0, 1.0, true, true},
+                                 "cell width as a fraction of L2 and L3");
+      region_names = {"ecm", "cell"};
+    } else {
+      region_names = {"matrix"};
+    }
+    mesh = make_cell_mesh(c);
+  }
+  SpecNode mats = s.child("materials", true, "one material per region, by region name");
+  std::vector<MaterialPtr> materials;
+  for (const auto& name : region_names) {
+    SpecNode m = mats.child(name, true, "material of region '" + name + "'");
+    materials.push_back(make_material(m));
+  }
+  mats.finish();
+  const auto options = MicroSolverOptions::from_spec(s.child("solver", false, "micro solver"));
+  s.finish();
+  return std::make_shared<const MicroModel>(std::move(mesh), std::move(materials), options,
+                                            s.path());
+}
+
+MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
+                       MicroSolverOptions options, const std::string& source)
+    : mesh_(std::move(mesh)),
+      materials_(std::move(materials)),
+      options_(options),
+      dofs_(mesh_, source) {
+  const int ne = mesh_.num_hexes();
+  FE2_CHECK(static_cast<int>(mesh_.region.size()) == ne, "region per hex");
+  for (int e = 0; e < ne; ++e)
+    if (mesh_.region[e] < 0 || mesh_.region[e] >= static_cast<int>(materials_.size()))
+      throw InputError(fmt::format("micro mesh '{}': element {} has region {} but only {} "
+                                   "materials are given",
+                                   source, e, mesh_.region[e], materials_.size()));
+  double floor = 0.0;
+  for (const auto& m : materials_) {
+    symmetric_ = symmetric_ && m->major_symmetric();
+    floor = std::max(floor, 1e-6 * m->stiffness_scale());
+  }
+  stress_floor_ = floor;
+
+  geometry_.reserve(ne);
+  eq_.resize(ne);
+  std::vector<double> rho(mesh_.num_nodes(), 0.0);  // ⟨|∇N_a|⟩ on masters
+  for (int e = 0; e < ne; ++e) {
+    geometry_.push_back(hex_geometry(mesh_, e));
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 8; ++a) eq_[e][8 * i + a] = dofs_.dof(mesh_.hexes[e][a], i);
+    for (int q = 0; q < 8; ++q)
+      for (int a = 0; a < 8; ++a)
+        rho[dofs_.master(mesh_.hexes[e][a])] +=
+            geometry_[e].weight[q] * geometry_[e].grad[q].col(a).norm() / mesh_.volume();
+  }
+  double s2 = 0.0;
+  for (double v : rho) s2 += v * v;
+  node_scale_ = std::sqrt(s2);
+
+  // Fixed pattern of K: one nonzero per pair of equations sharing an element.
+  const int n = dofs_.num_dofs();
+  std::vector<std::vector<int>> rows(n);
+  for (int e = 0; e < ne; ++e)
+    for (int l : eq_[e])
+      if (l >= 0)
+        for (int m : eq_[e])
+          if (m >= 0) rows[m].push_back(l);  // column m holds row l
+  std::vector<Eigen::Triplet<double>> trip;
+  for (int col = 0; col < n; ++col) {
+    auto& r = rows[col];
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+    for (int row : r) trip.emplace_back(row, col, 0.0);
+  }
+  pattern_.resize(n, n);
+  pattern_.setFromTriplets(trip.begin(), trip.end());
+  pattern_.makeCompressed();
+  scatter_.assign(static_cast<size_t>(ne) * 576, -1);
+  const int* outer = pattern_.outerIndexPtr();
+  const int* inner = pattern_.innerIndexPtr();
+  for (int e = 0; e < ne; ++e)
+    for (int l = 0; l < 24; ++l)
+      for (int m = 0; m < 24; ++m) {
+        const int row = eq_[e][l], col = eq_[e][m];
+        if (row < 0 || col < 0) continue;
+        const int* pos = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
+        scatter_[static_cast<size_t>(e) * 576 + 24 * l + m] = static_cast<int>(pos - inner);
+      }
+
+  // Fingerprint: sizes, regions and options (cheap FNV-1a over the defining data).
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](const void* p, size_t len) {
+    const auto* b = static_cast<const unsigned char*>(p);
+    for (size_t i = 0; i < len; ++i) h = (h ^ b[i]) * 1099511628211ull;
+  };
+  mix(&n, sizeof n);
+  mix(mesh_.region.data(), mesh_.region.size() * sizeof(int));
+  for (const auto& X : mesh_.nodes) mix(X.data(), 3 * sizeof(double));
+  for (const auto& m : materials_) {
+    const std::string nm = m->name();
+    mix(nm.data(), nm.size());
+    const double s = m->stiffness_scale();
+    mix(&s, sizeof s);
+  }
+  fingerprint_ = h;
+}
+
+FactorKind MicroModel::initial_factor_kind() const {
+  switch (options_.factorization) {
+    case MicroSolverOptions::Factorization::cholesky: return FactorKind::cholesky;
+    case MicroSolverOptions::Factorization::lu: return FactorKind::lu;
+    default: return symmetric_ ? FactorKind::cholesky : FactorKind::lu;
+  }
+}
+
+}  // namespace fe2

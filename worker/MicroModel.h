@@ -1,0 +1,88 @@
+#pragma once
+// Everything about a micro unit that does not change while it runs and is the same
+// for every unit built from one spec: the periodic hex mesh, its materials, the
+// periodic DOF map, element geometry, the fixed sparsity pattern of K with each
+// element's scatter positions, and the solver options. Shared read-only
+// (std::shared_ptr<const MicroModel>) by all units of that spec on a rank.
+#include "common/materials/Material.h"
+#include "common/mesh/HexMesh.h"
+#include "common/spec/SpecNode.h"
+#include "worker/PeriodicDofMap.h"
+#include "worker/SparseFactor.h"
+#include "worker/hex8.h"
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+/// How a unit keeps its factor of K and its characteristic modes χ (paper Fig. 6).
+struct MicroSolverOptions {
+  enum class Factorization { cholesky, lu, automatic };
+  enum class Refresh { every_iteration, fixed, adaptive };
+  Factorization factorization = Factorization::automatic;
+  Refresh refresh = Refresh::fixed;
+  int N_t = 10;              ///< fixed policy: refresh at iteration 1 of every N_t-th step
+  bool step4 = true;         ///< Eq. (11): δw = δw₁ − χ ΔZ̄
+  double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖
+  int gmres_restart = 50;
+  int gmres_max_iterations = 500;
+
+  /// Reads /.../solver; every key optional.
+  static MicroSolverOptions from_spec(SpecNode node);
+};
+
+class MicroModel {
+ public:
+  /// Builds from a unit spec object (see `fe2heart spec-doc`); `base_dir` resolves
+  /// relative mesh files. `name` labels error messages.
+  static std::shared_ptr<const MicroModel> from_spec(SpecNode node, const std::string& base_dir);
+  /// Builds from a ready mesh and one material per region.
+  MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials, MicroSolverOptions options,
+             const std::string& source);
+
+  const HexMesh& mesh() const { return mesh_; }
+  const PeriodicDofMap& dofs() const { return dofs_; }
+  const MicroSolverOptions& options() const { return options_; }
+  const Material& material_of(int e) const { return *materials_[mesh_.region[e]]; }
+  const HexGeometry& geometry(int e) const { return geometry_[e]; }
+  int num_dofs() const { return dofs_.num_dofs(); }
+  int num_elements() const { return mesh_.num_hexes(); }
+  double inv_volume() const { return 1.0 / mesh_.volume(); }
+  /// Equation of element unknown 8i + a, or -1 for the pinned node.
+  const std::array<int, 24>& element_equations(int e) const { return eq_[e]; }
+  /// Position in K's value array of element entry (l, m), or -1.
+  const int* scatter(int e) const { return &scatter_[static_cast<size_t>(e) * 576]; }
+  /// The zero-valued K with the fixed pattern, to copy into each unit.
+  const SparseMatrix& pattern() const { return pattern_; }
+  /// True when every material's tangent has major symmetry, so H = Gᵀ and K is symmetric.
+  bool symmetric() const { return symmetric_; }
+  /// ‖ρ‖ with ρ_a = ⟨|∇N_a|⟩ over periodic nodes: r_ref = max(‖P̄‖, σ_floor) · node_scale.
+  double node_scale() const { return node_scale_; }
+  /// Stress floor for r_ref: 1e-6 × the stiffest material's scale.
+  double stress_floor() const { return stress_floor_; }
+  /// Which factorization a fresh unit starts with.
+  FactorKind initial_factor_kind() const;
+  /// Content hash of mesh, materials layout and options (checks deserialized state).
+  uint64_t fingerprint() const { return fingerprint_; }
+
+ private:
+  HexMesh mesh_;
+  std::vector<MaterialPtr> materials_;
+  MicroSolverOptions options_;
+  PeriodicDofMap dofs_;
+  std::vector<HexGeometry> geometry_;
+  std::vector<std::array<int, 24>> eq_;
+  std::vector<int> scatter_;
+  SparseMatrix pattern_;
+  bool symmetric_ = true;
+  double node_scale_ = 1.0;
+  double stress_floor_ = 0.0;
+  uint64_t fingerprint_ = 0;
+};
+
+using MicroModelPtr = std::shared_ptr<const MicroModel>;
+
+}  // namespace fe2

@@ -1,0 +1,271 @@
+#include "worker/MicroUnit.h"
+
+#include "common/cpu_timer.h"
+#include "common/error.h"
+#include "worker/micro_kernel.h"
+
+#include <cmath>
+
+namespace fe2 {
+
+namespace {
+constexpr uint32_t kStateVersion = 1;
+
+bool all_finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
+}  // namespace
+
+MicroUnit::MicroUnit(MicroModelPtr model)
+    : model_(std::move(model)), factor_kind_(model_->initial_factor_kind()) {
+  const int n = model_->num_dofs();
+  w_ = Vec::Zero(n);
+  dw1_ = Vec::Zero(n);
+  w_committed_ = Vec::Zero(n);
+  chi_ = Eigen::MatrixXd::Zero(n, 9);
+  sys_.K = model_->pattern();
+  sys_.r = Vec::Zero(n);
+  sys_.G = Eigen::MatrixXd::Zero(n, 9);
+  sys_.H = Eigen::MatrixXd::Zero(9, n);
+}
+
+void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
+  const MicroModel& m = *model_;
+  const int n = m.num_dofs();
+  const bool need_G = !m.symmetric();
+  double* Kv = sys.K.valuePtr();
+  std::fill(Kv, Kv + sys.K.nonZeros(), 0.0);
+  sys.r.setZero(n);
+  sys.H.setZero(9, n);
+  Eigen::MatrixXd Gt;  // Gᵀ accumulated column-wise, only when 𝔸 lacks major symmetry
+  if (need_G) Gt.setZero(9, n);
+  sys.Abar.setZero();
+  sys.Pbar.setZero();
+
+  HexContribution c;
+  Eigen::Matrix<double, 3, 8> w_e;
+  const double inv_volume = m.inv_volume();
+  for (int e = 0; e < m.num_elements(); ++e) {
+    const auto& eq = m.element_equations(e);
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 8; ++a) {
+        const int g = eq[hex_local(i, a)];
+        w_e(i, a) = g >= 0 ? w[g] : 0.0;
+      }
+    hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c);
+    const int* pos = m.scatter(e);
+    for (int l = 0; l < 24; ++l) {
+      const int gl = eq[l];
+      if (gl < 0) continue;
+      sys.r[gl] += c.r[l];
+      sys.H.col(gl) += c.H.col(l);
+      if (need_G) Gt.col(gl) += c.G.row(l).transpose();
+      const int* row = pos + 24 * l;
+      for (int k = 0; k < 24; ++k)
+        if (row[k] >= 0) Kv[row[k]] += c.K(l, k);
+    }
+    sys.Abar += c.Abar;
+    sys.Pbar += c.Pbar;
+  }
+  sys.G = need_G ? Eigen::MatrixXd(Gt.transpose()) : Eigen::MatrixXd(sys.H.transpose());
+}
+
+bool MicroUnit::policy_wants_refresh(const proto::JobInput& in) const {
+  using R = MicroSolverOptions::Refresh;
+  if (in.force_refresh || !factor_ || !factor_->ready()) return true;
+  switch (model_->options().refresh) {
+    case R::every_iteration: return true;
+    case R::fixed: return in.iteration == 1 && in.step % model_->options().N_t == 0;
+    case R::adaptive: {
+      // Ski rental: refresh once the Krylov work beyond one iteration per job, since
+      // the last refresh, has cost as much as a refresh would (flop counts, so the
+      // decision is the same on every rank and every run).
+      const double per_iteration = factor_->solve_flops() + 2.0 * sys_.K.nonZeros();
+      const double refresh_cost = factor_->factor_flops() + 9.0 * factor_->solve_flops();
+      return excess_iterations_ * per_iteration >= refresh_cost;
+    }
+  }
+  return false;
+}
+
+void MicroUnit::refresh() {
+  // (c1) factor K; LLᵀ falls back to LU under the automatic policy when K stops
+  // being positive definite.
+  K_factored_.assign(sys_.K.valuePtr(), sys_.K.valuePtr() + sys_.K.nonZeros());
+  if (!factor_) factor_ = make_sparse_factor(factor_kind_);
+  try {
+    factor_->factorize(sys_.K);
+  } catch (const NumericalError&) {
+    if (factor_kind_ != FactorKind::cholesky ||
+        model_->options().factorization != MicroSolverOptions::Factorization::automatic)
+      throw;
+    factor_kind_ = FactorKind::lu;
+    factor_ = make_sparse_factor(factor_kind_);
+    factor_->factorize(sys_.K);
+  }
+  // (c3) Eq. (6): χ = K⁻¹ G. The factor is exact for K unless LLᵀ was forced on an
+  // unsymmetric K; columns whose residual is too large are finished by GMRES.
+  const int n = model_->num_dofs();
+  factor_->solve(sys_.G.data(), chi_.data(), 9);
+  const LinearOp A = [this](const Vec& x, Vec& y) { y.noalias() = sys_.K * x; };
+  const LinearOp M = [this](const Vec& x, Vec& y) { factor_->solve(x.data(), y.data(), 1); };
+  const auto& o = model_->options();
+  for (int c = 0; c < 9; ++c) {
+    const double bnorm = sys_.G.col(c).norm();
+    if (bnorm == 0.0) continue;
+    const double tol = o.gmres_rtol * bnorm;
+    Vec x = chi_.col(c);
+    if ((sys_.G.col(c) - sys_.K * x).norm() <= tol) continue;
+    const GmresResult res = gmres(A, M, sys_.G.col(c), x, tol, o.gmres_restart,
+                                  o.gmres_max_iterations);
+    if (!res.converged)
+      throw NumericalError(fmt::format(
+          "micro unit: characteristic mode {} did not converge (GMRES residual {:.3e} after "
+          "{} iterations, target {:.3e})",
+          c, res.residual, res.iterations, tol));
+    chi_.col(c) = x;
+  }
+  (void)n;
+  excess_iterations_ = 0.0;
+  ++refresh_count_;
+}
+
+GmresResult MicroUnit::step1() {
+  const auto& o = model_->options();
+  const Vec b = -sys_.r;
+  dw1_.setZero();
+  const double bnorm = b.norm();
+  if (bnorm == 0.0) return {0, 0.0, true};
+  const LinearOp A = [this](const Vec& x, Vec& y) { y.noalias() = sys_.K * x; };
+  const LinearOp M = [this](const Vec& x, Vec& y) { factor_->solve(x.data(), y.data(), 1); };
+  return gmres(A, M, b, dw1_, o.gmres_rtol * bnorm, o.gmres_restart, o.gmres_max_iterations);
+}
+
+proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
+  proto::JobOutput out;
+  out.unit = in.unit;
+  const double t_start = thread_cpu_seconds();
+
+  // Accept the previous iteration: w += δw₁ − χ(Z̄_new − Z̄_old)   (Eq. 11)
+  if (in.apply_update && has_pending_) {
+    w_ += dw1_;
+    if (model_->options().step4) w_.noalias() -= chi_ * (in.Zbar - Zbar_);
+  }
+  has_pending_ = false;
+  Zbar_ = in.Zbar;
+
+  {
+    ScopedCpuTimer t(out.cpu_assembly);  // Fig. 5 (b)
+    assemble_at(w_, Zbar_, sys_);
+  }
+  if (!all_finite(sys_.r) || !sys_.Pbar.allFinite() || !sys_.Abar.allFinite())
+    throw NumericalError(fmt::format("micro unit {}: non-finite residual or stress at step {} "
+                                     "iteration {}",
+                                     in.unit, in.step, in.iteration));
+
+  bool refreshed = policy_wants_refresh(in);
+  if (refreshed) {
+    ScopedCpuTimer t(out.cpu_refresh);
+    refresh();
+  }
+  GmresResult res;
+  {
+    ScopedCpuTimer t(out.cpu_solve);  // Fig. 6 (c2)
+    res = step1();
+  }
+  if (!res.converged && !refreshed) {  // a stale preconditioner gave up: refresh once
+    {
+      ScopedCpuTimer t(out.cpu_refresh);
+      refresh();
+    }
+    refreshed = true;
+    ScopedCpuTimer t(out.cpu_solve);
+    const int before = res.iterations;
+    res = step1();
+    res.iterations += before;
+  }
+  if (!res.converged)
+    throw NumericalError(fmt::format(
+        "micro unit {}: Step 1 GMRES did not converge at step {} iteration {} (residual "
+        "{:.3e} after {} iterations, ‖r‖ = {:.3e})",
+        in.unit, in.step, in.iteration, res.residual, res.iterations, sys_.r.norm()));
+  if (!refreshed) excess_iterations_ += std::max(0, res.iterations - 1);
+  has_pending_ = true;
+
+  out.A_hom = sys_.Abar - sys_.H * chi_;      // Eq. (7)
+  out.P_tilde = sys_.Pbar + sys_.H * dw1_;    // Eq. (9)
+  out.P_bar = sys_.Pbar;
+  out.r_norm = sys_.r.norm();
+  out.r_ref = std::max(sys_.Pbar.norm(), model_->stress_floor()) * model_->node_scale();
+  out.gmres_iterations = res.iterations;
+  out.kind = refreshed ? proto::Refresh::refresh : proto::Refresh::reuse;
+  out.cpu_seconds = thread_cpu_seconds() - t_start;
+  return out;
+}
+
+void MicroUnit::commit_step() {
+  // The converged iteration's δw₁ is not applied (paper Fig. 5 (i): converged, go to
+  // the next step), so the state to keep is the assembled one.
+  has_pending_ = false;
+  w_committed_ = w_;
+  Zbar_committed_ = Zbar_;
+}
+
+void MicroUnit::rollback_step() {
+  has_pending_ = false;
+  w_ = w_committed_;
+  Zbar_ = Zbar_committed_;
+}
+
+void MicroUnit::serialize(Bytes& out) const {
+  ByteWriter b(out);
+  b.put_string(kind());
+  b.put(kStateVersion);
+  b.put(model_->fingerprint());
+  const size_t n = static_cast<size_t>(model_->num_dofs());
+  b.put_array(w_.data(), n);
+  b.put_array(dw1_.data(), n);
+  b.put_array(Zbar_.data(), 9);
+  b.put<uint8_t>(has_pending_);
+  b.put_array(chi_.data(), 9 * n);
+  b.put<uint8_t>(factor_kind_ == FactorKind::lu);
+  b.put_array(K_factored_.data(), K_factored_.size());
+  b.put_array(w_committed_.data(), n);
+  b.put_array(Zbar_committed_.data(), 9);
+  b.put(excess_iterations_);
+  b.put(refresh_count_);
+}
+
+void MicroUnit::deserialize(const Bytes& in) {
+  ByteReader b(in, "micro unit state");
+  if (b.get_string() != kind()) throw Error("micro unit state: not a micro unit");
+  const auto version = b.get<uint32_t>();
+  if (version != kStateVersion)
+    throw Error(fmt::format("micro unit state: version {}, expected {}", version, kStateVersion));
+  if (b.get<uint64_t>() != model_->fingerprint())
+    throw Error("micro unit state: it belongs to a different unit model (fingerprint differs)");
+  const size_t n = static_cast<size_t>(model_->num_dofs());
+  b.get_array_into(w_.data(), n);
+  b.get_array_into(dw1_.data(), n);
+  b.get_array_into(Zbar_.data(), 9);
+  has_pending_ = b.get<uint8_t>() != 0;
+  b.get_array_into(chi_.data(), 9 * n);
+  factor_kind_ = b.get<uint8_t>() ? FactorKind::lu : FactorKind::cholesky;
+  K_factored_ = b.get_array<double>();
+  if (!K_factored_.empty() && K_factored_.size() != static_cast<size_t>(sys_.K.nonZeros()))
+    throw Error("micro unit state: stored factor matrix has the wrong size");
+  b.get_array_into(w_committed_.data(), n);
+  b.get_array_into(Zbar_committed_.data(), 9);
+  excess_iterations_ = b.get<double>();
+  refresh_count_ = b.get<int>();
+  if (!b.at_end()) throw Error("micro unit state: trailing bytes");
+  // Rebuild the factor from the very matrix it was made of: the continuation is then
+  // bit-for-bit the same as if the unit had never moved.
+  factor_.reset();
+  if (!K_factored_.empty()) {
+    SparseMatrix K = model_->pattern();
+    std::copy(K_factored_.begin(), K_factored_.end(), K.valuePtr());
+    factor_ = make_sparse_factor(factor_kind_);
+    factor_->factorize(K);
+  }
+}
+
+}  // namespace fe2

@@ -1,0 +1,79 @@
+#pragma once
+// One FE² micro unit: the periodic fluctuation w of a cell under the macro gradient
+// Z̄, with its cached factor of K and characteristic modes χ. Each call to iterate()
+// is one Newton iteration of the coupled problem as the paper's Fig. 5 (b)–(e) and
+// Fig. 6 do it:
+//
+//   (update)  w += δw₁ − χ ΔZ̄                         Eq. (11), Step 4 (a flag)
+//   (b)       assemble r, K, G, H, Ā, P̄ at (w, Z̄)     DESIGN §1
+//   (c1,c3)   on refresh: factor K, χ = K⁻¹ G           Eq. (6)
+//   (c2)      K δw₁ = −r by GMRES, factor as preconditioner   Eq. (8), Step 1
+//   (d)       𝔸_hom = Ā − H χ                           Eq. (7)
+//   (e)       P̃ = P̄ + H δw₁                             Eq. (9)
+//
+// The pending δw₁ is applied at the start of the next job when that job says so
+// (the coordinator accepted the iteration), with −χ(Z̄_new − Z̄_old) when Step 4 is on.
+#include "worker/MicroModel.h"
+#include "worker/PointModel.h"
+#include "worker/gmres.h"
+
+namespace fe2 {
+
+class MicroUnit final : public PointModel {
+ public:
+  /// The averaged quantities at one state (DESIGN §1), G n×9, H 9×n.
+  struct System {
+    Vec r;
+    SparseMatrix K;
+    Eigen::MatrixXd G;
+    Eigen::MatrixXd H;
+    Mat9 Abar = Mat9::Zero();
+    Vec9 Pbar = Vec9::Zero();
+  };
+
+  explicit MicroUnit(MicroModelPtr model);
+
+  proto::JobOutput iterate(const proto::JobInput& in) override;
+  void commit_step() override;
+  void rollback_step() override;
+  void serialize(Bytes& out) const override;
+  void deserialize(const Bytes& in) override;
+  std::string kind() const override { return "micro_unit"; }
+
+  /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern).
+  void assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const;
+
+  const MicroModel& model() const { return *model_; }
+  const Vec& w() const { return w_; }
+  void set_w(const Vec& w) { w_ = w; }
+  const Vec& pending_dw1() const { return dw1_; }
+  const Eigen::MatrixXd& chi() const { return chi_; }
+  const System& system() const { return sys_; }
+  int refresh_count() const { return refresh_count_; }
+  FactorKind factor_kind() const { return factor_kind_; }
+  const SparseFactor* factor() const { return factor_.get(); }
+
+ private:
+  bool policy_wants_refresh(const proto::JobInput& in) const;
+  void refresh();
+  GmresResult step1();
+
+  MicroModelPtr model_;
+  // --- state (serialized) ---
+  Vec w_;                       ///< periodic fluctuation at the last assembled state
+  Vec dw1_;                     ///< pending Step 1 increment δw₁
+  Vec9 Zbar_ = Vec9::Zero();    ///< Z̄ at the last assembled state
+  bool has_pending_ = false;
+  Eigen::MatrixXd chi_;         ///< characteristic modes χ (n×9), Eq. (6)
+  std::vector<double> K_factored_;  ///< values of K at the last refresh (rebuilds the factor bit for bit)
+  FactorKind factor_kind_;
+  Vec w_committed_;
+  Vec9 Zbar_committed_ = Vec9::Zero();
+  double excess_iterations_ = 0.0;  ///< adaptive policy: GMRES iterations beyond one since refresh
+  int refresh_count_ = 0;
+  // --- workspace ---
+  System sys_;
+  std::unique_ptr<SparseFactor> factor_;
+};
+
+}  // namespace fe2

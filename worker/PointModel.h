@@ -1,0 +1,31 @@
+#pragma once
+// The material response at one macro integration point, however it is computed: an
+// FE² micro unit (MicroUnit) or the macro constitutive law itself (MacroLawPoint).
+// This is the first of a scene's effects (DESIGN §4): the macro problem and the task
+// farm see only this interface, in the point's own material frame.
+#include "common/bytes.h"
+#include "proto/job.h"
+
+#include <memory>
+#include <string>
+
+namespace fe2 {
+
+class PointModel {
+ public:
+  virtual ~PointModel() = default;
+  /// One Newton iteration at this point (DESIGN §2, steps 1–5).
+  virtual proto::JobOutput iterate(const proto::JobInput& in) = 0;
+  /// The step converged: the current state is the one to come back to.
+  virtual void commit_step() = 0;
+  /// The step is being cut back: return to the last committed state.
+  virtual void rollback_step() = 0;
+  /// Whole state to bytes and back (migration between ranks, checkpoints).
+  virtual void serialize(Bytes& out) const = 0;
+  virtual void deserialize(const Bytes& in) = 0;
+  virtual std::string kind() const = 0;
+};
+
+using PointModelPtr = std::unique_ptr<PointModel>;
+
+}  // namespace fe2

@@ -1,0 +1,27 @@
+#pragma once
+// Restarted GMRES(m) with right preconditioning (Saad, Iterative Methods, Alg. 9.5):
+// solves A x = b with x = M⁻¹ y, so the residual it minimises is the true residual
+// b − A x, and the stopping test ‖b − A x‖ ≤ tol is checked on the true residual at
+// every restart. Used for Step 1 (Eq. 8) and stale characteristic modes (Eq. 6) with
+// the unit's cached factor as M⁻¹ (paper Fig. 6, c2 and c3).
+#include <Eigen/Dense>
+
+#include <functional>
+
+namespace fe2 {
+
+using Vec = Eigen::VectorXd;
+/// y = Op(x); y is sized by the caller.
+using LinearOp = std::function<void(const Vec& x, Vec& y)>;
+
+struct GmresResult {
+  int iterations = 0;      ///< Krylov iterations (preconditioner applications)
+  double residual = 0.0;   ///< final true residual norm ‖b − Ax‖
+  bool converged = false;
+};
+
+/// `x` is the initial guess on entry and the solution on exit.
+GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x, double tol,
+                  int restart, int max_iterations);
+
+}  // namespace fe2

@@ -1,0 +1,58 @@
+#include "worker/micro_kernel.h"
+
+namespace fe2 {
+
+void hex_contribution(const HexGeometry& geo, double inv_volume,
+                      const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
+                      const Material& material, bool need_G, HexContribution& out) {
+  out.K.setZero();
+  out.r.setZero();
+  out.H.setZero();
+  if (need_G) out.G.setZero();
+  out.Abar.setZero();
+  out.Pbar.setZero();
+
+  Vec9 Pi;                              // Π at the Gauss point
+  Mat9 A;                               // 𝔸 at the Gauss point
+  Mat9 Ap;                              // ω𝔸 with rows and columns reordered (i,J) -> 3i+J
+  Eigen::Matrix<double, 9, 24> M;       // ω(𝔸 B̃) with rows in 3i+J order
+  Eigen::Matrix<double, 8, 3> R;        // ∇Nᵀ Πᵀ: r_e(8i+a) = R(a,i)
+  for (int q = 0; q < 8; ++q) {
+    const Eigen::Matrix<double, 3, 8>& g = geo.grad[q];  // g(J,a) = ∂N_a/∂X_J
+    const double omega = geo.weight[q] * inv_volume;
+
+    // Z = Z̄ + B̃w: Z_iJ = Z̄_iJ + Σ_a w_ai ∂N_a/∂X_J
+    Mat3 Z = as_mat3(Zbar) + w_e * g.transpose();
+    material.stress_and_tangent(as_vec9(Z), Pi, A);
+
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J)
+        for (int k = 0; k < 3; ++k)
+          for (int L = 0; L < 3; ++L)
+            Ap(3 * i + J, 3 * k + L) = omega * A(i + 3 * J, k + 3 * L);
+
+    // M(3i+J, 8k+b) = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
+    for (int k = 0; k < 3; ++k) M.middleCols<8>(8 * k).noalias() = Ap.middleCols<3>(3 * k) * g;
+    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J M(3i+J, 8k+b)
+    for (int i = 0; i < 3; ++i)
+      out.K.middleRows<8>(8 * i).noalias() += g.transpose() * M.middleRows<3>(3 * i);
+    // H(iJ, ·) += M(3i+J, ·)
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) out.H.row(i + 3 * J) += M.row(3 * i + J);
+    if (need_G) {
+      // G(8i+a, m) += ω Σ_J ∂N_a/∂X_J 𝔸(iJ, m)
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Matrix<double, 3, 9> rows;
+        for (int J = 0; J < 3; ++J) rows.row(J) = omega * A.row(i + 3 * J);
+        out.G.middleRows<8>(8 * i).noalias() += g.transpose() * rows;
+      }
+    }
+    const Mat3 P = as_mat3(Pi);
+    R.noalias() = g.transpose() * P.transpose();
+    for (int i = 0; i < 3; ++i) out.r.segment<8>(8 * i) += omega * R.col(i);
+    out.Abar += omega * A;
+    out.Pbar += omega * Pi;
+  }
+}
+
+}  // namespace fe2
