@@ -34,6 +34,12 @@ int RunSpec::model_index_of_tet(int e) const {
   return it == model_of_region.end() ? default_model : it->second;
 }
 
+std::vector<int> RunSpec::model_of_points() const {
+  std::vector<int> m(mesh.num_tets());
+  for (int e = 0; e < mesh.num_tets(); ++e) m[e] = model_index_of_tet(e);
+  return m;
+}
+
 namespace {
 
 Vec3 vec3(SpecNode& s, const std::string& key, std::optional<Vec3> def, const std::string& help) {

@@ -79,6 +79,8 @@ struct RunSpec {
   bool write_vtu = true;
 
   int model_index_of_tet(int e) const;
+  /// Model index of every integration point (one per tet), in point order.
+  std::vector<int> model_of_points() const;
 };
 
 /// Reads and checks a spec; every problem is an InputError naming the key.

@@ -12,12 +12,6 @@
 namespace fe2::cli {
 
 namespace {
-std::vector<int> model_of_points(const RunSpec& spec) {
-  std::vector<int> m(spec.mesh.num_tets());
-  for (int e = 0; e < spec.mesh.num_tets(); ++e) m[e] = spec.model_index_of_tet(e);
-  return m;
-}
-
 std::string describe(const RunSpec& spec) {
   int units = 0, dofs = 0;
   for (int e = 0; e < spec.mesh.num_tets(); ++e) {
@@ -51,7 +45,7 @@ int run(const RunOptions& o) {
   spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
   spdlog::info("{}", describe(spec));
 
-  LocalEvaluator points(spec.models, model_of_points(spec));
+  LocalEvaluator points(spec.models, spec.model_of_points());
   Simulation sim(spec, points, MPI_COMM_WORLD);
   const double t0 = wall_seconds();
   output.write_fields(sim, 0, 0.0);

@@ -18,6 +18,14 @@ namespace fe2 {
 
 namespace {
 
+// Keeps messages readable when the offending text is a run of binary garbage.
+std::string printable(std::string_view s) {
+  std::string out;
+  for (char c : s.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
+  if (s.size() > 40) out += "...";
+  return out;
+}
+
 // ---------------------------------------------------------------------------------
 // Tokens of an MSH file, each with the line it came from so errors can point at it.
 // Every read is bounds-checked: garbage input ends in an InputError, never a crash.
@@ -50,7 +58,7 @@ class MshLexer {
     long long value = 0;
     const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), value);
     if (ec != std::errc() || end != tok.data() + tok.size() || value < lo || value > hi)
-      fail(fmt::format("found '{}', expected {} (an integer in [{}, {}])", clip(tok), what, lo, hi));
+      fail(fmt::format("found '{}', expected {} (an integer in [{}, {}])", printable(tok), what, lo, hi));
     return value;
   }
 
@@ -63,14 +71,14 @@ class MshLexer {
     double value = 0;
     const auto [end, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), value);
     if (ec != std::errc() || end != tok.data() + tok.size() || !std::isfinite(value))
-      fail(fmt::format("found '{}', expected {} (a finite number)", clip(tok), what));
+      fail(fmt::format("found '{}', expected {} (a finite number)", printable(tok), what));
     return value;
   }
 
   /// A double-quoted string on one line (physical names may contain spaces).
   std::string quoted(std::string_view what) {
     if (at_end() || text_[pos_] != '"')
-      fail(fmt::format("found '{}', expected {} in double quotes", clip(peek_rest_of_line()), what));
+      fail(fmt::format("found '{}', expected {} in double quotes", printable(peek_rest_of_line()), what));
     const std::size_t close = text_.find_first_of("\"\n", pos_ + 1);
     if (close == std::string::npos || text_[close] != '"')
       fail(fmt::format("unterminated string, expected {} in double quotes", what));
@@ -81,7 +89,7 @@ class MshLexer {
 
   void expect(std::string_view keyword) {
     const std::string_view tok = token(keyword);
-    if (tok != keyword) fail(fmt::format("found '{}', expected {}", clip(tok), keyword));
+    if (tok != keyword) fail(fmt::format("found '{}', expected {}", printable(tok), keyword));
   }
 
   /// Moves past the end of the current line.
@@ -105,14 +113,6 @@ class MshLexer {
   std::string_view peek_rest_of_line() const {
     const std::size_t nl = std::min(text_.find('\n', pos_), text_.size());
     return std::string_view(text_).substr(std::min(pos_, text_.size()), nl - std::min(pos_, text_.size()));
-  }
-
-  // Keeps messages readable when the "token" is a run of binary garbage.
-  static std::string clip(std::string_view s) {
-    std::string out;
-    for (char c : s.substr(0, 40)) out += (c >= 32 && c < 127) ? c : '?';
-    if (s.size() > 40) out += "...";
-    return out;
   }
 
   std::string text_, file_;
@@ -316,10 +316,11 @@ MshData parse_msh_file(const std::string& file) {
   std::set<std::string> seen;
   while (!lex.at_end()) {
     const std::string_view tok = lex.token("a section");
-    if (tok.size() < 2 || tok[0] != '$') lex.fail(fmt::format("found '{}', expected a section such as $Nodes",
-                                                              std::string(tok.substr(0, 40))));
+    if (tok.size() < 2 || tok[0] != '$')
+      lex.fail(fmt::format("found '{}', expected a section such as $Nodes", printable(tok)));
     const std::string name(tok.substr(1));
-    if (seen.empty() && name != "MeshFormat") lex.fail(fmt::format("found ${}, expected $MeshFormat first", name));
+    if (seen.empty() && name != "MeshFormat")
+      lex.fail(fmt::format("found ${}, expected $MeshFormat first", printable(name)));
     if (name == "MeshFormat" || name == "PhysicalNames" || name == "Entities" || name == "Nodes" ||
         name == "Elements") {
       if (!seen.insert(name).second) lex.fail(fmt::format("second ${} section, expected one", name));
