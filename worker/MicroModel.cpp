@@ -44,10 +44,12 @@ std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::s
                     "cell geometry: built-in layouts or a Gmsh hex mesh");
   HexMesh mesh;
   std::vector<std::string> region_names;
+  std::string source = s.path();
   if (c.kind == "mesh_file") {
     std::filesystem::path p = s.string("mesh_file", std::nullopt, "Gmsh 4.1 hex mesh of the cell");
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     mesh = read_gmsh_hexes(p.string());
+    source = p.string();
     const int nreg = *std::max_element(mesh.region.begin(), mesh.region.end()) + 1;
     for (int r = 0; r < nreg; ++r) region_names.push_back(std::to_string(r));
   } else {
@@ -91,7 +93,7 @@ std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::s
   const auto options = MicroSolverOptions::from_spec(s.child("solver", false, "micro solver"));
   s.finish();
   return std::make_shared<const MicroModel>(std::move(mesh), std::move(materials), options,
-                                            s.path());
+                                            source);
 }
 
 MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
