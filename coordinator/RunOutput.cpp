@@ -1,20 +1,11 @@
 #include "coordinator/RunOutput.h"
 
+#include "common/io/atomic_file.h"
+
 #include <filesystem>
 #include <fstream>
 
 namespace fe2 {
-
-void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw InputError(fmt::format("cannot write '{}'", tmp));
-    out << text;
-    if (!out) throw InputError(fmt::format("error writing '{}'", tmp));
-  }
-  std::filesystem::rename(tmp, path);
-}
 
 RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
   std::error_code ec;

@@ -28,7 +28,4 @@ class RunOutput {
   std::unique_ptr<PvdWriter> pvd_;
 };
 
-/// Writes `text` to `path` atomically.
-void write_file_atomically(const std::string& path, const std::string& text);
-
 }  // namespace fe2

@@ -43,6 +43,8 @@ int bench_unit(const BenchOptions& o) {
   Vec9 Z0 = Vec9::Zero();
   Z0[0] = 0.05;  // 5 % fibre stretch
   proto::JobInput job;
+  job.step = 1;       // not a refresh step of the fixed policy: refreshes only when forced
+  job.iteration = 2;
   job.Zbar = Z0;
   job.force_refresh = 1;
   const double t_first = thread_cpu_seconds();

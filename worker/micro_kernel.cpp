@@ -33,9 +33,16 @@ void hex_contribution(const HexGeometry& geo, double inv_volume,
 
     // M(3i+J, 8k+b) = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
     for (int k = 0; k < 3; ++k) M.middleCols<8>(8 * k).noalias() = Ap.middleCols<3>(3 * k) * g;
-    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J M(3i+J, 8k+b)
-    for (int i = 0; i < 3; ++i)
-      out.K.middleRows<8>(8 * i).noalias() += g.transpose() * M.middleRows<3>(3 * i);
+    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J M(3i+J, 8k+b). With major symmetry K is
+    // symmetric: only the blocks k >= i are computed here, the rest mirrored below.
+    if (need_G) {
+      for (int i = 0; i < 3; ++i)
+        out.K.middleRows<8>(8 * i).noalias() += g.transpose() * M.middleRows<3>(3 * i);
+    } else {
+      out.K.block<8, 24>(0, 0).noalias() += g.transpose() * M.block<3, 24>(0, 0);
+      out.K.block<8, 16>(8, 8).noalias() += g.transpose() * M.block<3, 16>(3, 8);
+      out.K.block<8, 8>(16, 16).noalias() += g.transpose() * M.block<3, 8>(6, 16);
+    }
     // H(iJ, ·) += M(3i+J, ·)
     for (int i = 0; i < 3; ++i)
       for (int J = 0; J < 3; ++J) out.H.row(i + 3 * J) += M.row(3 * i + J);
@@ -53,6 +60,10 @@ void hex_contribution(const HexGeometry& geo, double inv_volume,
     out.Abar += omega * A;
     out.Pbar += omega * Pi;
   }
+  if (!need_G)
+    for (int i = 0; i < 3; ++i)
+      for (int k = i + 1; k < 3; ++k)
+        out.K.block<8, 8>(8 * k, 8 * i) = out.K.block<8, 8>(8 * i, 8 * k).transpose();
 }
 
 }  // namespace fe2

@@ -1,6 +1,7 @@
 #include "common/io/vtu_writer.h"
 
 #include "common/error.h"
+#include "common/io/atomic_file.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -17,28 +18,6 @@ using Buffer = fmt::memory_buffer;
 
 constexpr int kVtkTetra = 10;
 constexpr int kVtkHexahedron = 12;
-
-// Replaces `path` by `content` in one rename, so readers never see a partial file.
-void write_file_atomically(const std::string& path, const Buffer& content) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw InputError(fmt::format("cannot open output file '{}' for writing, expected a writable directory", tmp));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw Error(fmt::format("error while writing output file '{}' (disk full?)", tmp));
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw Error(fmt::format("cannot rename '{}' to '{}': {}", tmp, path, ec.message()));
-  }
-}
 
 std::string xml_escape(std::string_view s) {
   std::string out;
@@ -109,7 +88,7 @@ void write_unstructured(const std::string& path, const std::vector<Vec3>& nodes,
   fmt::format_to(out(b), "\n        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
   for (std::size_t e = 0; e < cells.size(); ++e) fmt::format_to(out(b), " {}", vtk_type);
   fmt::format_to(out(b), "\n        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-  write_file_atomically(path, b);
+  write_file_atomically(path, std::string_view(b.data(), b.size()));
 }
 
 }  // namespace
@@ -166,7 +145,7 @@ void PvdWriter::write() const {
   for (const auto& [time, file] : steps_)
     fmt::format_to(out, "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time, xml_escape(file));
   fmt::format_to(out, "  </Collection>\n</VTKFile>\n");
-  write_file_atomically(path_, b);
+  write_file_atomically(path_, std::string_view(b.data(), b.size()));
 }
 
 }  // namespace fe2

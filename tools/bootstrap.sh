@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# fe2heart on a fresh Debian 12 machine, as root. Idempotent, non-interactive.
+#   tools/bootstrap.sh demo   install what is missing, build, run the default scene
+#   tools/bootstrap.sh test   install what is missing, build, run the whole test suite
+set -euo pipefail
+mode=${1:-}
+[[ $mode == demo || $mode == test ]] || { echo "usage: $0 demo|test" >&2; exit 2; }
+top=$(cd "$(dirname "$0")/.." && pwd)
+cd "$top"
+
+packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev libeigen3-dev
+          libsuitesparse-dev libopenblas-dev libmumps-dev libmetis-dev libspdlog-dev nlohmann-json3-dev
+          libcli11-dev libgtest-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Ranks must not fight over the two cores with BLAS threads; root may run mpirun.
+export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+
+jobs=$(nproc)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$jobs"
+
+if [[ $mode == demo ]]; then
+  out="$top/out/fe2_beam"
+  ./build/tools/fe2heart run configs/fe2_beam.json --out "$out"
+  echo
+  echo "results: $out/summary.json"
+  echo "fields:  $out/displacement.pvd (open in ParaView; Warp By Vector 'displacement')"
+else
+  cd build
+  ctest -j"$jobs" --output-on-failure --timeout 900
+fi
