@@ -38,6 +38,11 @@ int validate(const std::string& file) {
 }
 
 int run(const RunOptions& o) {
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (ranks != 1)
+    throw InputError(fmt::format("fe2heart run: launched on {} ranks, expected 1: this build "
+                                 "runs every point on one process (mpirun -np 1)", ranks));
   const RunSpec spec = read_run_spec_file(o.spec);
   RunOutput output(o.out, spec);
   auto file_sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);

@@ -21,6 +21,7 @@ struct BenchOptions {
   int dofs = 26000;
   int repeat = 5;
   std::string cell = "two_cells";
+  double stale_stretch = 0.002;  ///< how far Z̄ moves from the factored state
 };
 int bench_unit(const BenchOptions& o);
 

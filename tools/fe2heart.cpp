@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   CLI::App app{"fe2heart: a multi-scale FE² heart simulator (macro tetrahedra driven by "
                "periodic micro units of cardiac cells)"};
   app.require_subcommand(1);
+  app.fallthrough();  // --log-level may follow the subcommand
   std::string level = "info";
   app.add_option("--log-level", level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}));
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(24, 3000000));
   c_bench_unit->add_option("--repeat", bench.repeat, "repetitions (medians are reported)")
       ->check(CLI::Range(1, 100));
+  c_bench_unit->add_option("--stale-stretch", bench.stale_stretch,
+                           "fibre stretch between the factored state and the timed iteration")
+      ->check(CLI::Range(0.0, 0.2));
   c_bench_unit->add_option("--cell", bench.cell, "cell layout")
       ->check(CLI::IsMember({"two_cells", "homogeneous", "laminate"}));
 

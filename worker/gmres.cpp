@@ -9,7 +9,7 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
                   int restart, int max_iterations) {
   const Eigen::Index n = b.size();
   GmresResult res;
-  Vec r(n), w(n), z(n);
+  Vec r(n), w(n);
   A(x, w);
   r = b - w;
   double beta = r.norm();
@@ -19,18 +19,25 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
     return res;
   }
   const int m = std::max(1, restart);
-  std::vector<Vec> V(m + 1, Vec(n));
+  // Krylov basis V and Z_j = M⁻¹ V_j (kept so the update needs no extra solve); both
+  // grow only as far as the iteration goes, since a good preconditioner needs one or two.
+  std::vector<Vec> V, Z;
+  V.reserve(m + 1);
+  Z.reserve(m);
   Eigen::MatrixXd Hm = Eigen::MatrixXd::Zero(m + 1, m);  // Hessenberg, Givens-rotated
   Vec cs(m), sn(m), g(m + 1);
 
   while (res.iterations < max_iterations) {
+    if (V.empty()) V.emplace_back(n);
     V[0] = r / beta;
     g.setZero();
     g[0] = beta;
     int j = 0;
     for (; j < m && res.iterations < max_iterations; ++j) {
-      Minv(V[j], z);
-      A(z, w);
+      if (static_cast<int>(Z.size()) <= j) Z.emplace_back(n);
+      if (static_cast<int>(V.size()) <= j + 1) V.emplace_back(n);
+      Minv(V[j], Z[j]);
+      A(Z[j], w);
       ++res.iterations;
       // Modified Gram–Schmidt
       for (int i = 0; i <= j; ++i) {
@@ -56,12 +63,9 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
         break;
       }
     }
-    // x += M⁻¹ V y, with H y = g (upper triangular j x j)
+    // x += M⁻¹ V y = Z y, with H y = g (upper triangular j x j)
     const Vec y = Hm.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
-    w.setZero();
-    for (int i = 0; i < j; ++i) w += y[i] * V[i];
-    Minv(w, z);
-    x += z;
+    for (int i = 0; i < j; ++i) x += y[i] * Z[i];
     A(x, w);
     r = b - w;
     beta = r.norm();

@@ -1,5 +1,6 @@
 #pragma once
-// Restarted GMRES(m) with right preconditioning (Saad, Iterative Methods, Alg. 9.5):
+// Restarted GMRES(m) with right preconditioning, keeping the preconditioned basis
+// (Saad, Iterative Methods, Alg. 9.6, FGMRES) so the update costs no extra solve:
 // solves A x = b with x = M⁻¹ y, so the residual it minimises is the true residual
 // b − A x, and the stopping test ‖b − A x‖ ≤ tol is checked on the true residual at
 // every restart. Used for Step 1 (Eq. 8) and stale characteristic modes (Eq. 6) with

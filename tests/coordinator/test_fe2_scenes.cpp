@@ -64,7 +64,7 @@ TEST(Fe2Scene, Step4OnAndOffReachSameAnswer) {
 
 // Test 6b: a factor (and χ) reused for N_t = 10 steps reaches the same answer as
 // refactoring at every iteration, with fewer refreshes.
-TEST(Fe2Scene, FactorReusedForTenStepsReachesSameAnswer) {
+TEST(HardFe2Scene, FactorReusedForTenStepsReachesSameAnswer) {
   const auto reuse = run_scene(beam({{"kind", "fe2"}, {"unit", test::two_cell_unit("fixed", true, 10)}}, 10));
   const auto fresh = run_scene(beam({{"kind", "fe2"}, {"unit", test::two_cell_unit("every_iteration")}}, 10));
   ASSERT_TRUE(reuse.result.converged) << reuse.result.error;

@@ -100,7 +100,7 @@ TEST(Homogenization, LaminateMatchesExactFormulaInLinearLimit) {
 
 // Test 3: 𝔸_hom of a heterogeneous two-cell unit at finite strain is the derivative of
 // its equilibrated P̄(Z̄), checked by central differences.
-TEST(Homogenization, TangentMatchesFiniteDifferencesOfEquilibratedStress) {
+TEST(HardHomogenization, TangentMatchesFiniteDifferencesOfEquilibratedStress) {
   MicroSolverOptions opt;
   opt.refresh = MicroSolverOptions::Refresh::every_iteration;
   const auto model = test::two_cell_model(opt);

@@ -1,0 +1,92 @@
+// Newmark-β inertia and fibre frames.
+#include "tests/coordinator/scene_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fe2 {
+namespace {
+
+json cantilever(const std::string& scheme, int steps, double t_end) {
+  return {{"mesh", {{"kind", "box"}, {"hi", {4, 1, 1}}, {"divisions", {4, 1, 1}}}},
+          {"models", {{"m", {{"kind", "macro_law"}, {"material", {{"model", "st_venant_kirchhoff"}, {"E", 1e4}, {"nu", 0.3}}}}}}},
+          {"dirichlet", {{{"set", "xmin"}}}},
+          {"pressure", {{{"surface", "zmax"}, {"value", 0.2}, {"ramp", "constant"}}}},
+          {"time", {{"t_end", t_end}, {"steps", steps}, {"scheme", scheme}, {"density", 10.0}}},
+          {"newton", {{"rtol", 1e-10}}},
+          {"probes", {{"tip", {4, 0.5, 0.5}}}},
+          {"output", {{"vtu", false}}}};
+}
+
+// A load applied suddenly to an undamped linear structure makes it oscillate about
+// the static deflection with amplitude equal to it: the peak is twice the static
+// deflection (dynamic amplification factor 2) and the time average is the static one.
+// The load is small (tip deflection ~1 % of the length), so the response is linear to
+// about 1 %; Newmark's average-acceleration rule (β = ¼, γ = ½) adds no damping.
+TEST(Newmark, SuddenLoadPeaksAtTwiceStaticDeflection) {
+  const auto stat = test::run_scene(cantilever("quasi_static", 1, 1.0));
+  ASSERT_TRUE(stat.result.converged);
+  const double w_static = stat.probes[0].z() - 0.5;
+  ASSERT_LT(w_static, -1e-3);
+
+  const RunSpec spec = read_run_spec(cantilever("newmark", 1200, 6.0), "");
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points, MPI_COMM_WORLD);
+  std::vector<double> w;
+  const RunResult r = sim.run([&](const StepRecord&) {
+    w.push_back(sim.deformed_position(spec.probes[0].second).z() - 0.5);
+  });
+  ASSERT_TRUE(r.converged) << r.error;
+  const double peak = *std::min_element(w.begin(), w.end());
+  // Several periods must be inside the run for the average to mean anything.
+  int crossings = 0;
+  for (size_t k = 1; k < w.size(); ++k)
+    crossings += (w[k] - w_static) * (w[k - 1] - w_static) < 0;
+  ASSERT_GE(crossings, 4) << "fewer than two periods simulated";
+  EXPECT_NEAR(peak / w_static, 2.0, 0.05);
+  double mean = 0.0;
+  for (double x : w) mean += x / w.size();
+  EXPECT_NEAR(mean / w_static, 1.0, 0.1);  // partial last period: loose on purpose
+}
+
+TEST(FibreFrame, RotatingRuleTurnsFibresAboutTheAxisAndStaysOrthonormal) {
+  json j = cantilever("quasi_static", 1, 1.0);
+  j["frame"] = {{"kind", "rotating"}, {"fibre", {1, 0, 0}}, {"sheet", {0, 1, 0}},
+                {"axis", {0, 1, 0}}, {"coordinate", {0, 1, 0}}, {"from", {0.0, -60.0}},
+                {"to", {1.0, 60.0}}};
+  const RunSpec spec = read_run_spec(j, "");
+  for (double y : {0.0, 0.25, 0.5, 1.0, 2.0}) {
+    const Mat3 Q = spec.frame.at(Vec3(1.0, y, 0.3));
+    EXPECT_LT((Q.transpose() * Q - Mat3::Identity()).norm(), 1e-14);
+    EXPECT_NEAR(Q.determinant(), 1.0, 1e-14);
+    const double expected = -60.0 + 120.0 * std::clamp(y, 0.0, 1.0);  // degrees, clamped
+    const double angle = std::atan2(-Q(2, 0), Q(0, 0)) * 180.0 / M_PI;  // rotation about +y
+    EXPECT_NEAR(angle, expected, 1e-10) << "y = " << y;
+  }
+}
+
+TEST(RunSpecErrors, UnknownSetAndModelAreNamedWithSuggestions) {
+  json j = cantilever("quasi_static", 1, 1.0);
+  j["dirichlet"][0]["set"] = "xmn";
+  try {
+    read_run_spec(j, "");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean \"xmin\""), std::string::npos) << e.what();
+  }
+  j = cantilever("quasi_static", 1, 1.0);
+  j["assign"] = {{"default", "n"}};
+  EXPECT_THROW(read_run_spec(j, ""), InputError);
+  j = cantilever("quasi_static", 1, 1.0);
+  j["probes"]["outside"] = {9, 9, 9};
+  try {
+    read_run_spec(j, "");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/probes/outside"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fe2
