@@ -2,7 +2,8 @@
 
 namespace fe2 {
 
-MacroSystem::MacroSystem(const RunSpec& spec) : spec_(spec), num_nodes_(spec.mesh.num_nodes()) {
+MacroSystem::MacroSystem(const RunSpec& spec, const std::vector<int>& owned_tets, int part, int parts)
+    : spec_(spec), num_nodes_(spec.mesh.num_nodes()) {
   const TetMesh& m = spec.mesh;
   // Prescribed DOFs; a later condition on the same DOF overrides an earlier one.
   std::vector<int> source(3 * num_nodes_, -1);
@@ -19,9 +20,11 @@ MacroSystem::MacroSystem(const RunSpec& spec) : spec_(spec), num_nodes_(spec.mes
       eq_[dof] = num_free_++;
     }
   }
+  // Pressure triangles are dealt out to the coordinators in turn (exclusively).
+  int k = 0;
   for (size_t p = 0; p < spec.pressure.size(); ++p)
     for (const auto& tri : m.faces.at(spec.pressure[p].surface))
-      triangles_.push_back({tri, static_cast<int>(p)});
+      if (k++ % parts == part) triangles_.push_back({tri, static_cast<int>(p)});
 
   auto add_block = [&](const int* nodes, int nn, std::vector<int>& map) {
     for (int a = 0; a < nn; ++a)
@@ -38,7 +41,7 @@ MacroSystem::MacroSystem(const RunSpec& spec) : spec_(spec), num_nodes_(spec.mes
             cols_.push_back(c);
           }
   };
-  for (const auto& t : m.tets) add_block(t.data(), 4, tet_map_);
+  for (int e : owned_tets) add_block(m.tets[e].data(), 4, tet_map_);
   for (const auto& t : triangles_) add_block(t.nodes.data(), 3, tri_map_);
 }
 
@@ -48,9 +51,9 @@ double MacroSystem::prescribed_value(size_t k, double t) const {
   return ds.value[i] * ramp_factor(ds.ramp, t, spec_.t_end);
 }
 
-void MacroSystem::add_tet(int e, const Eigen::Matrix<double, 12, 12>& Ke,
+void MacroSystem::add_tet(int k, const Eigen::Matrix<double, 12, 12>& Ke,
                           std::vector<double>& values) const {
-  const int* map = &tet_map_[static_cast<size_t>(e) * 144];
+  const int* map = &tet_map_[static_cast<size_t>(k) * 144];
   for (int l = 0; l < 12; ++l)
     for (int c = 0; c < 12; ++c)
       if (map[12 * l + c] >= 0) values[map[12 * l + c]] += Ke(l, c);

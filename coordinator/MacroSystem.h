@@ -1,7 +1,9 @@
 #pragma once
 // Macro unknowns and the fixed triplet pattern of S̄ (Eq. 10): equation numbers of
-// free DOFs (Dirichlet DOFs are eliminated), one 12x12 block per tet and one 9x9 block
-// per pressure triangle, in a fixed order so each iteration only refills values.
+// free DOFs (Dirichlet DOFs are eliminated), one 12x12 block per owned tet and one 9x9
+// block per owned pressure triangle, in a fixed order so each iteration only refills
+// values. With several coordinators each holds the triplets of its own elements
+// (MUMPS distributed assembled input sums them).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/RunSpec.h"
 
@@ -11,7 +13,8 @@ namespace fe2 {
 
 class MacroSystem {
  public:
-  MacroSystem(const RunSpec& spec);
+  /// `owned_tets`: this coordinator's tets; pressure triangles k with k % parts == part.
+  MacroSystem(const RunSpec& spec, const std::vector<int>& owned_tets, int part = 0, int parts = 1);
 
   int num_dofs() const { return 3 * num_nodes_; }
   int num_free() const { return num_free_; }
@@ -24,8 +27,8 @@ class MacroSystem {
   /// The pattern (0-based rows/cols of free equations).
   const std::vector<int>& rows() const { return rows_; }
   const std::vector<int>& cols() const { return cols_; }
-  /// Adds a tet's 12x12 block (node-major) into `values` at its pattern slots.
-  void add_tet(int e, const Eigen::Matrix<double, 12, 12>& Ke, std::vector<double>& values) const;
+  /// Adds the k-th owned tet's 12x12 block (node-major) into `values` at its slots.
+  void add_tet(int k, const Eigen::Matrix<double, 12, 12>& Ke, std::vector<double>& values) const;
   /// Adds pressure triangle `k` (in the order of pressure_triangles()) block.
   void add_triangle(int k, const Eigen::Matrix<double, 9, 9>& Ke, std::vector<double>& values) const;
   struct PressureTriangle {

@@ -19,15 +19,15 @@ RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
 
 std::string RunOutput::pvd_path() const { return dir_ + "/displacement.pvd"; }
 
-void RunOutput::write_fields(const Simulation& sim, int step, double time) {
-  if (!pvd_) return;
+void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step,
+                             double time) {
   const TetMesh& mesh = sim.spec().mesh;
   const auto& u = sim.displacement();
   std::vector<Vec3> disp(mesh.num_nodes());
   for (int a = 0; a < mesh.num_nodes(); ++a) disp[a] = u.segment<3>(3 * a);
   VtuFields point, cell;
   point.add_vector("displacement", disp);
-  std::vector<Vec9> P(sim.point_stress());
+  if (!pvd_) return;
   std::vector<double> detF(mesh.num_tets()), region(mesh.num_tets()), model(mesh.num_tets());
   std::vector<Vec3> fibre(mesh.num_tets());
   for (int e = 0; e < mesh.num_tets(); ++e) {

@@ -16,8 +16,9 @@ class RunOutput {
  public:
   /// Creates `dir` (InputError if it cannot) and copies the spec into it.
   RunOutput(const std::string& dir, const RunSpec& spec);
-  /// Writes the fields of the current state as step `step` (VTU + PVD entry).
-  void write_fields(const Simulation& sim, int step, double time);
+  /// Writes the fields of the current state as step `step` (VTU + PVD entry); `P` is
+  /// Simulation::gather_point_stress() (collective, so the caller gathers).
+  void write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step, double time);
   /// summary.json; `sim` gives probe positions at the final state.
   void write_summary(const Simulation& sim, const RunResult& result, double wall_seconds);
   const std::string& dir() const { return dir_; }

@@ -9,6 +9,7 @@
 #include "common/materials/Material.h"
 #include "common/mesh/TetMesh.h"
 #include "common/spec/SpecNode.h"
+#include "coordinator/FarmOptions.h"
 #include "worker/MicroModel.h"
 #include "worker/point_models.h"
 
@@ -73,6 +74,9 @@ struct RunSpec {
   double newton_rtol = 1e-8;      ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
   double micro_rtol = 1e-8;       ///< each unit: ‖r‖ <= micro_rtol · r_ref
   int max_cutbacks = 4;
+
+  FarmOptions farm;
+  uint64_t hash = 0;              ///< of the spec's canonical text (ranks compare it)
 
   std::vector<std::pair<std::string, Vec3>> probes;
   int output_every = 1;

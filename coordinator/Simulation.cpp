@@ -33,11 +33,26 @@ Vec12 gather(const Vec& u, const std::array<int, 4>& t) {
 
 }  // namespace
 
-Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, MPI_Comm comm)
+namespace {
+std::vector<int> all_tets(const TetMesh& m) {
+  std::vector<int> v(m.num_tets());
+  for (int e = 0; e < m.num_tets(); ++e) v[e] = e;
+  return v;
+}
+}  // namespace
+
+Simulation::Simulation(const RunSpec& spec, PointEvaluator& points)
+    : Simulation(spec, points, proto::Group(), all_tets(spec.mesh)) {}
+
+Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
+                       const proto::Group& coordinators, std::vector<int> owned_tets)
     : spec_(spec),
       evaluator_(points),
-      system_(spec),
-      mumps_(comm, system_.num_free()),
+      self_(coordinators.valid() ? MPI_COMM_NULL : MPI_COMM_SELF),
+      group_(coordinators.valid() ? coordinators : self_),
+      owned_(std::move(owned_tets)),
+      system_(spec, owned_, group_.rank(), group_.size()),
+      mumps_(group_.raw(), system_.num_free()),
       pts_(tet_points(spec.mesh)) {
   const int ne = spec.mesh.num_tets();
   Q_.resize(ne);
@@ -50,7 +65,7 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, MPI_Comm com
   u_ = v_ = a_ = u_n_ = v_n_ = a_n_ = Eigen::VectorXd::Zero(n);
   Zbar_n_.assign(ne, Vec9::Zero());
   P_bar_.assign(ne, Vec9::Zero());
-  jobs_.resize(ne);
+  jobs_.resize(owned_.size());
   values_.assign(system_.rows().size(), 0.0);
   if (system_.num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
@@ -64,8 +79,30 @@ Vec3 Simulation::deformed_position(const Vec3& X) const {
   return x;
 }
 
+void Simulation::agree_on_failure(const std::string& why) const {
+  const int failed = group_.allreduce_max(static_cast<int>(!why.empty()));
+  if (!failed) return;
+  // The lowest failing coordinator's reason, for every coordinator.
+  const int first = -group_.allreduce_max(why.empty() ? -group_.size() : -group_.rank());
+  Bytes text;
+  if (group_.rank() == first) text.assign(reinterpret_cast<const std::byte*>(why.data()),
+                                          reinterpret_cast<const std::byte*>(why.data()) + why.size());
+  group_.bcast(text, first);
+  throw NumericalError(std::string(reinterpret_cast<const char*>(text.data()), text.size()));
+}
+
+std::vector<Vec9> Simulation::gather_point_stress() const {
+  std::vector<double> flat(9 * static_cast<size_t>(spec_.mesh.num_tets()), 0.0);
+  for (int e : owned_) std::copy(P_bar_[e].data(), P_bar_[e].data() + 9, flat.begin() + 9 * e);
+  group_.reduce_sum(flat.data(), static_cast<int>(flat.size()), 0);
+  std::vector<Vec9> P(spec_.mesh.num_tets());
+  for (int e = 0; e < spec_.mesh.num_tets(); ++e) P[e] = Eigen::Map<const Vec9>(&flat[9 * e]);
+  return P;
+}
+
 void Simulation::compute_jobs(int step, int iteration, double t_new, double dt, bool apply_update) {
-  for (int e = 0; e < spec_.mesh.num_tets(); ++e) {
+  for (size_t k = 0; k < owned_.size(); ++k) {
+    const int e = owned_[k];
     const auto& t = spec_.mesh.tets[e];
     const Vec9 Zbar = pts_[e].B * gather(u_, t);
     const double J = (Mat3::Identity() + as_mat3(Zbar)).determinant();
@@ -73,7 +110,7 @@ void Simulation::compute_jobs(int step, int iteration, double t_new, double dt, 
       throw NumericalError(fmt::format("macro element {} inverted at t = {:.6g} (det F̄ = {:.3e})",
                                        e, t_new, J));
     const Vec9 Zdot = spec_.dynamic ? Vec9(pts_[e].B * gather(v_, t)) : Vec9((Zbar - Zbar_n_[e]) / dt);
-    proto::JobInput& job = jobs_[e];
+    proto::JobInput& job = jobs_[k];
     job.unit = e;
     job.step = step;
     job.iteration = iteration;
@@ -107,9 +144,24 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
       a_ = c_mass * (u_ - u_n_ - dt * v_n_) - (0.5 / spec_.beta - 1.0) * a_n_;
       v_ = v_n_ + dt * ((1.0 - spec_.gamma) * a_n_ + spec_.gamma * a_);
     }
-    // (a) + (b–e)
-    compute_jobs(step, it, t_new, dt, it > 1);
+    IterationTiming timing;
+    timing.step = step;
+    timing.iteration = it;
+    const double t_begin = wall_seconds();
+    // (a) Z̄ at the points, agreed valid on every coordinator, then (b–e)
+    std::string why;
+    try {
+      compute_jobs(step, it, t_new, dt, it > 1);
+    } catch (const NumericalError& e) {
+      why = e.what();
+    }
+    agree_on_failure(why);
     evaluator_.evaluate(jobs_, results_);
+    timing.micro_lc = wall_seconds() - t_begin;
+    for (const auto& r : results_)
+      if (r.failed && why.empty()) why = r.message;
+    agree_on_failure(why);
+    const double t_macro = wall_seconds();
 
     // (g) assemble S̄ and ḡ; f_int (with P̄) for the convergence test
     std::fill(values_.begin(), values_.end(), 0.0);
@@ -118,8 +170,9 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     f_ext.setZero();
     double micro = 0.0;
     const bool first = it == 1 && has_du_D;
-    for (int e = 0; e < spec_.mesh.num_tets(); ++e) {
-      const proto::JobOutput& r = results_[e];
+    for (size_t k = 0; k < owned_.size(); ++k) {
+      const int e = owned_[k];
+      const proto::JobOutput& r = results_[k];
       const TetPoint& p = pts_[e];
       const auto& t = spec_.mesh.tets[e];
       const Mat9 A = R_[e].transpose() * r.A_hom * R_[e];   // back to the global frame
@@ -135,7 +188,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
         fe += inertia;
         fe_int += inertia;
       }
-      system_.add_tet(e, Ke, values_);
+      system_.add_tet(static_cast<int>(k), Ke, values_);
       const Vec12 lift = first ? Vec12(Ke * gather(du_D, t)) : Vec12::Zero();
       for (int a = 0; a < 4; ++a)
         for (int i = 0; i < 3; ++i) {
@@ -168,7 +221,11 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
         }
     }
 
-    // (i) convergence: true residual with P̄ on free DOFs, and every unit's ‖r‖
+    // (i) convergence: true residual with P̄ on free DOFs, and every unit's ‖r‖ (sums
+    // and maxima over all coordinators, identical on each)
+    group_.allreduce_sum(f_int.data(), ndof);
+    group_.allreduce_sum(f_ext.data(), ndof);
+    micro = group_.allreduce_max(micro);
     double res2 = 0.0;
     for (int dof = 0; dof < ndof; ++dof)
       if (system_.eq(dof) >= 0) res2 += std::pow(f_ext[dof] - f_int[dof], 2);
@@ -177,20 +234,33 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     if (!std::isfinite(res)) throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g}", t_new));
     rec.residuals.push_back(res);
     rec.micro_residuals.push_back(micro);
+    double work[3] = {0.0, 0.0, 0.0};  // GMRES iterations, refreshes, unit CPU seconds
     for (const auto& r : results_) {
-      rec.gmres_iterations += r.gmres_iterations;
-      rec.refreshes += r.kind == proto::Refresh::refresh;
-      rec.micro_cpu_seconds += r.cpu_seconds;
+      work[0] += r.gmres_iterations;
+      work[1] += r.kind == proto::Refresh::refresh;
+      work[2] += r.cpu_seconds;
     }
+    group_.allreduce_sum(work, 3);
+    rec.gmres_iterations += static_cast<int>(work[0]);
+    rec.refreshes += static_cast<int>(work[1]);
+    rec.micro_cpu_seconds += work[2];
     spdlog::debug("step {} t={:.6g} it {}: |R|/F = {:.3e}, max |r|/r_ref = {:.3e}", step, t_new,
                   it, res, micro);
-    if (!first && res <= spec_.newton_rtol && micro <= spec_.micro_rtol) {
+    const bool converged = !first && res <= spec_.newton_rtol && micro <= spec_.micro_rtol;
+    if (!converged) {
+      // (h) S̄ Δū = ḡ on the coordinators (ḡ summed on the MUMPS host), Δū to all
+      group_.reduce_sum(g.data(), nfree, 0);
+      mumps_.factorize_and_solve(values_, g);
+      group_.bcast(g.data(), nfree, 0);
+    }
+    timing.macro = wall_seconds() - t_macro;
+    timing.entire = wall_seconds() - t_begin;
+    if (on_iteration_) on_iteration_(timing);
+    if (converged) {
       rec.iterations += it;
       return true;
     }
-
-    // (h) S̄ Δū = ḡ; (j) ū += Δū
-    mumps_.factorize_and_solve(values_, g);
+    // (j) ū += Δū
     for (int dof = 0; dof < ndof; ++dof)
       if (system_.eq(dof) >= 0) u_[dof] += g[system_.eq(dof)];
     if (first) u_ += du_D;
@@ -201,8 +271,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
 
 void Simulation::commit(double t_new) {
   evaluator_.commit_step();
-  for (int e = 0; e < spec_.mesh.num_tets(); ++e)
-    Zbar_n_[e] = pts_[e].B * gather(u_, spec_.mesh.tets[e]);
+  for (int e : owned_) Zbar_n_[e] = pts_[e].B * gather(u_, spec_.mesh.tets[e]);
   u_n_ = u_;
   v_n_ = v_;
   a_n_ = a_;
@@ -216,7 +285,8 @@ void Simulation::rollback() {
   a_ = a_n_;
 }
 
-RunResult Simulation::run(const StepHook& on_step) {
+RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_iteration) {
+  on_iteration_ = on_iteration;
   RunResult result;
   const double dt_nominal = spec_.t_end / spec_.steps;
   for (int step = 0; step < spec_.steps; ++step) {

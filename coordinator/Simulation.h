@@ -13,7 +13,9 @@
 #include "coordinator/MumpsSolver.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/RunSpec.h"
+#include "coordinator/Trace.h"
 #include "coordinator/tet_kinematics.h"
+#include "proto/Transport.h"
 
 #include <functional>
 #include <string>
@@ -44,19 +46,26 @@ struct RunResult {
 
 class Simulation {
  public:
-  /// `points` is lent and must answer one job per tet, in tet order.
-  /// @note Collective on `comm` (the MUMPS communicator).
-  Simulation(const RunSpec& spec, PointEvaluator& points, MPI_Comm comm);
+  /// One process owning every element. `points` is lent.
+  Simulation(const RunSpec& spec, PointEvaluator& points);
+  /// A coordinator of a farm owning `owned_tets` (ascending); `coordinators` is lent.
+  /// @note Collective on the coordinator group (the MUMPS communicator).
+  Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
+             std::vector<int> owned_tets);
 
   /// Called after every accepted step (for output); may be empty.
   using StepHook = std::function<void(const StepRecord&)>;
-  RunResult run(const StepHook& on_step = {});
+  /// Called after every Newton iteration with its phase times (traces); may be empty.
+  using IterationHook = std::function<void(const IterationTiming&)>;
+  /// @note Collective.
+  RunResult run(const StepHook& on_step = {}, const IterationHook& on_iteration = {});
 
   const RunSpec& spec() const { return spec_; }
   const Eigen::VectorXd& displacement() const { return u_; }
   const std::vector<TetPoint>& points() const { return pts_; }
-  /// Per point, the last P̄ and det F̄ in the global frame (for output).
-  const std::vector<Vec9>& point_stress() const { return P_bar_; }
+  /// Per point, the last P̄ in the global frame, gathered on coordinator 0.
+  /// @note Collective.
+  std::vector<Vec9> gather_point_stress() const;
   const Mat3& frame(int e) const { return Q_[e]; }
   /// Deformed position of a reference point inside the mesh.
   Vec3 deformed_position(const Vec3& X) const;
@@ -66,11 +75,17 @@ class Simulation {
 
  private:
   void compute_jobs(int step, int iteration, double t_new, double dt, bool apply_update);
+  /// Throws the same NumericalError on every coordinator if any of them failed
+  /// (`why` non-empty on the ones that did). @note Collective.
+  void agree_on_failure(const std::string& why) const;
   void commit(double t_new);
   void rollback();
 
   const RunSpec& spec_;
   PointEvaluator& evaluator_;
+  proto::Group self_;                  ///< MPI_COMM_SELF for the one-process form
+  const proto::Group& group_;
+  std::vector<int> owned_;             ///< this coordinator's tets (= units)
   MacroSystem system_;
   MumpsSolver mumps_;
   std::vector<TetPoint> pts_;
@@ -84,6 +99,7 @@ class Simulation {
   std::vector<proto::JobInput> jobs_;
   std::vector<proto::JobOutput> results_;
   std::vector<double> values_;         ///< S̄ triplet values
+  IterationHook on_iteration_;
 };
 
 }  // namespace fe2

@@ -5,6 +5,7 @@
 #include "common/tensor9.h"
 
 #include <cstdint>
+#include <string>
 
 namespace fe2::proto {
 
@@ -35,6 +36,8 @@ struct JobOutput {
   double cpu_assembly = 0.0;
   double cpu_refresh = 0.0;   ///< factorization + characteristic modes
   double cpu_solve = 0.0;     ///< Step 1 GMRES
+  uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)
+  std::string message;        ///< why, when failed
 };
 
 }  // namespace fe2::proto

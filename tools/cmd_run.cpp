@@ -1,17 +1,22 @@
+// `fe2heart run`: every rank reads the spec; ranks agree on protocol and spec; the
+// first n_c ranks coordinate (macro problem, MUMPS), the worker ranks hold units.
 #include "common/cpu_timer.h"
+#include "coordinator/FarmEvaluator.h"
+#include "coordinator/FarmLayout.h"
 #include "coordinator/RunOutput.h"
 #include "coordinator/RunSpec.h"
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/unit_spec.h"
+#include "worker/worker_loop.h"
 
 #include <spdlog/sinks/basic_file_sink.h>
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 namespace fe2::cli {
 
 namespace {
+
 std::string describe(const RunSpec& spec) {
   int units = 0, dofs = 0;
   for (int e = 0; e < spec.mesh.num_tets(); ++e) {
@@ -22,6 +27,45 @@ std::string describe(const RunSpec& spec) {
                      spec.mesh.num_nodes(), spec.mesh.num_tets(), units, dofs, spec.steps,
                      spec.dynamic ? ", Newmark dynamics" : ", quasi-static");
 }
+
+/// Every rank must run the same protocol and the same spec (preCICE checkRemoteInfo).
+/// @note Collective on the world.
+void check_ranks_agree(const proto::Group& world, const RunSpec& spec) {
+  proto::Hello mine;
+  mine.spec_hash = spec.hash;
+  mine.rank = world.rank();
+  mine.ranks = world.size();
+  Bytes b;
+  mine.pack(b);
+  Bytes verdict;
+  const auto all = world.gather(b, 0);
+  if (world.rank() == 0) {
+    std::string problem;
+    for (const Bytes& x : all) {
+      try {
+        const proto::Hello h = proto::Hello::unpack(x);
+        if (h.spec_hash != spec.hash && problem.empty())
+          problem = fmt::format("rank {} read a different spec (hash {:016x}) from rank 0 ({:016x}); "
+                                "every rank must see the same spec file",
+                                h.rank, h.spec_hash, spec.hash);
+      } catch (const Error& e) {
+        if (problem.empty()) problem = e.what();
+      }
+    }
+    verdict.assign(reinterpret_cast<const std::byte*>(problem.data()),
+                   reinterpret_cast<const std::byte*>(problem.data() + problem.size()));
+  }
+  world.bcast(verdict, 0);
+  if (!verdict.empty())
+    throw InputError(std::string(reinterpret_cast<const char*>(verdict.data()), verdict.size()));
+}
+
+std::string format_duration(double s) {
+  if (s < 120) return fmt::format("{:.1f} s", s);
+  if (s < 7200) return fmt::format("{:.1f} min", s / 60);
+  return fmt::format("{:.1f} h", s / 3600);
+}
+
 }  // namespace
 
 int validate(const std::string& file) {
@@ -38,42 +82,95 @@ int validate(const std::string& file) {
 }
 
 int run(const RunOptions& o) {
-  int ranks = 1;
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  if (ranks != 1)
-    throw InputError(fmt::format("fe2heart run: launched on {} ranks, expected 1: this build "
-                                 "runs every point on one process (mpirun -np 1)", ranks));
+  proto::Transport transport(MPI_COMM_WORLD);
+  const proto::Group world(MPI_COMM_WORLD);
+  const int rank = world.rank();
+  // Input errors surface here identically on every rank: all exit 2, none hangs.
   const RunSpec spec = read_run_spec_file(o.spec);
-  RunOutput output(o.out, spec);
-  auto file_sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
-  spdlog::default_logger()->sinks().push_back(file_sink);
-  spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
-  spdlog::info("{}", describe(spec));
+  const FarmLayout layout = FarmLayout::make(spec, world.size(), o.coordinators);
+  check_ranks_agree(world, spec);
+  if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
 
-  LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points, MPI_COMM_WORLD);
-  const double t0 = wall_seconds();
-  output.write_fields(sim, 0, 0.0);
-  const RunResult result = sim.run([&](const StepRecord& r) {
-    spdlog::info("step {:4d}  t = {:<10.5g} Newton {:2d}  |R|/F = {:.2e}  max |r|/r_ref = {:.2e}"
-                 "  GMRES {:5d}  refreshes {:4d}{}  {:.2f} s",
-                 r.step + 1, r.time, r.iterations, r.residuals.back(), r.micro_residuals.back(),
-                 r.gmres_iterations, r.refreshes,
-                 r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "", r.wall_seconds);
-    if ((r.step + 1) % spec.output_every == 0 || r.step + 1 == spec.steps)
-      output.write_fields(sim, r.step + 1, r.time);
-  });
-  output.write_summary(sim, result, wall_seconds() - t0);
-  if (!result.converged) {
-    spdlog::error("run stopped: {}", result.error);
-    spdlog::info("partial results in {}", o.out);
-    return 3;
+  const bool coordinator = layout.is_coordinator(rank);
+  const proto::Group coords = world.split(coordinator ? 0 : -1, rank);
+  const std::vector<int> model_of_unit = spec.model_of_points();
+  std::unique_ptr<UnitStore> store;
+  if (layout.is_worker(rank)) {
+    store = std::make_unique<UnitStore>(spec.models, model_of_unit);
+    for (size_t u = 0; u < model_of_unit.size(); ++u)
+      if (layout.initial_worker_of_unit[u] == rank) store->create(static_cast<int>(u));
   }
-  spdlog::info("done in {:.2f} s: {} steps, {} Newton iterations", wall_seconds() - t0,
-               result.steps, result.newton_iterations);
-  spdlog::info("results: {}/summary.json{}", o.out,
-               spec.write_vtu ? fmt::format(", fields: {} (open in ParaView)", output.pvd_path()) : "");
-  return 0;
+
+  // From here on a failure on one rank must end every rank: no one may wait forever.
+  try {
+    if (!coordinator) {
+      run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch);
+      return 0;
+    }
+    std::unique_ptr<RunOutput> output;
+    std::unique_ptr<Trace> trace;
+    if (rank == 0) {
+      output = std::make_unique<RunOutput>(o.out, spec);
+      trace = std::make_unique<Trace>(o.out);
+      auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
+      spdlog::default_logger()->sinks().push_back(sink);
+      spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
+      spdlog::info("{}", describe(spec));
+      spdlog::info("{} ranks: {} coordinator(s), {} worker rank(s), policy {}", layout.ranks,
+                   layout.coordinators, layout.worker_ranks.size(),
+                   spec.farm.policy == FarmOptions::Policy::cost_based ? "cost_based"
+                   : spec.farm.policy == FarmOptions::Policy::round_robin ? "round_robin"
+                                                                           : "contiguous");
+    }
+    FarmEvaluator points(transport, coords, layout, spec, store.get(), trace.get());
+    Simulation sim(spec, points, coords, layout.owned_units(rank));
+    const double t0 = wall_seconds();
+    auto write_fields = [&](int step, double time) {
+      const auto P = sim.gather_point_stress();
+      if (output) output->write_fields(sim, P, step, time);
+    };
+    write_fields(0, 0.0);
+    const RunResult result = sim.run(
+        [&](const StepRecord& r) {
+          const double elapsed = wall_seconds() - t0;
+          const double remaining = elapsed / (r.step + 1) * (spec.steps - r.step - 1);
+          spdlog::info("step {:4d}/{}  t = {:<10.5g} Newton {:2d}  |R|/F = {:.2e}  max |r|/r_ref = "
+                       "{:.2e}  GMRES {:5d}  refreshes {:4d}{}  elapsed {}, remaining ~{}",
+                       r.step + 1, spec.steps, r.time, r.iterations, r.residuals.back(),
+                       r.micro_residuals.back(), r.gmres_iterations, r.refreshes,
+                       r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "",
+                       format_duration(elapsed), format_duration(remaining));
+          if ((r.step + 1) % spec.output_every == 0 || r.step + 1 == spec.steps)
+            write_fields(r.step + 1, r.time);
+        },
+        [&](IterationTiming t) {
+          if (!trace) return;
+          const IterationTiming& f = points.last();
+          t.comm1 = f.comm1;
+          t.comm2 = f.comm2;
+          t.bytes = f.bytes;
+          t.migrations = f.migrations;
+          t.jobs = f.jobs;
+          trace->iteration(t);
+        });
+    if (rank == 0) points.shutdown();
+    if (output) output->write_summary(sim, result, wall_seconds() - t0);
+    if (!result.converged) {
+      spdlog::error("run stopped: {}", result.error);
+      spdlog::info("partial results in {}", o.out);
+      return 3;
+    }
+    spdlog::info("done in {:.2f} s: {} steps, {} Newton iterations", wall_seconds() - t0,
+                 result.steps, result.newton_iterations);
+    spdlog::info("results: {}/summary.json{}; traces: {}/trace_*.jsonl", o.out,
+                 spec.write_vtu ? fmt::format(", fields: {} (open in ParaView)", output ? output->pvd_path() : "") : "",
+                 o.out);
+    return 0;
+  } catch (const std::exception& e) {
+    spdlog::critical("rank {}: {}; stopping every rank", rank, e.what());
+    spdlog::default_logger()->flush();
+    transport.abort(dynamic_cast<const Error*>(&e) ? dynamic_cast<const Error*>(&e)->exit_code() : 1);
+  }
 }
 
 }  // namespace fe2::cli

@@ -7,6 +7,7 @@ namespace fe2::cli {
 struct RunOptions {
   std::string spec;
   std::string out;
+  int coordinators = 0;  ///< 0: from the spec
 };
 int run(const RunOptions& o);
 int validate(const std::string& spec);

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
                                           "VTU/PVD fields");
   c_run->add_option("spec", run.spec, "run spec (JSON)")->required();
   c_run->add_option("--out", run.out, "output folder")->required();
+  c_run->add_option("--coordinators", run.coordinators,
+                    "coordinator ranks (overrides farm.coordinators in the spec)")
+      ->check(CLI::Range(1, 1000000));
 
   std::string validate_spec;
   auto* c_validate = app.add_subcommand("validate", "check a run or unit spec and its meshes");
@@ -64,7 +67,9 @@ int main(int argc, char** argv) {
     else if (*c_unit) rc = fe2::cli::unit(unit);
     else if (*c_bench_unit) rc = fe2::cli::bench_unit(bench);
   } catch (const fe2::Error& e) {
-    spdlog::error("{}", e.what());
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) spdlog::error("{}", e.what());  // every rank has the same input error
     rc = e.exit_code();
   } catch (const std::exception& e) {
     spdlog::error("unexpected error: {}", e.what());

@@ -68,9 +68,9 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
   sys.G = need_G ? Eigen::MatrixXd(Gt.transpose()) : Eigen::MatrixXd(sys.H.transpose());
 }
 
-bool MicroUnit::policy_wants_refresh(const proto::JobInput& in) const {
+bool MicroUnit::refresh_due(const proto::JobInput& in) const {
   using R = MicroSolverOptions::Refresh;
-  if (in.force_refresh || !factor_ || !factor_->ready()) return true;
+  if (in.force_refresh || K_factored_.empty()) return true;
   switch (model_->options().refresh) {
     case R::every_iteration: return true;
     case R::fixed: return in.iteration == 1 && in.step % model_->options().N_t == 0;
@@ -78,12 +78,21 @@ bool MicroUnit::policy_wants_refresh(const proto::JobInput& in) const {
       // Ski rental: refresh once the Krylov work beyond one iteration per job, since
       // the last refresh, has cost as much as a refresh would (flop counts, so the
       // decision is the same on every rank and every run).
-      const double per_iteration = factor_->solve_flops() + 2.0 * sys_.K.nonZeros();
-      const double refresh_cost = factor_->factor_flops() + 9.0 * factor_->solve_flops();
+      const double per_iteration = solve_flops_ + 2.0 * static_cast<double>(sys_.K.nonZeros());
+      const double refresh_cost = factor_flops_ + 9.0 * solve_flops_;
       return excess_iterations_ * per_iteration >= refresh_cost;
     }
   }
   return false;
+}
+
+void MicroUnit::rebuild_factor() {
+  // The factor of the very matrix it was made of: continuing after a migration is
+  // then bit for bit the same as if the unit had never moved.
+  SparseMatrix K = model_->pattern();
+  std::copy(K_factored_.begin(), K_factored_.end(), K.valuePtr());
+  factor_ = make_sparse_factor(factor_kind_);
+  factor_->factorize(K);
 }
 
 void MicroUnit::refresh() {
@@ -124,6 +133,8 @@ void MicroUnit::refresh() {
     chi_.col(c) = x;
   }
   (void)n;
+  factor_flops_ = factor_->factor_flops();
+  solve_flops_ = factor_->solve_flops();
   excess_iterations_ = 0.0;
   ++refresh_count_;
 }
@@ -161,10 +172,13 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
                                      "iteration {}",
                                      in.unit, in.step, in.iteration));
 
-  bool refreshed = policy_wants_refresh(in);
+  bool refreshed = refresh_due(in);
   if (refreshed) {
     ScopedCpuTimer t(out.cpu_refresh);
     refresh();
+  } else if (!factor_) {  // arrived from another rank: rebuild the cached factor
+    ScopedCpuTimer t(out.cpu_refresh);
+    rebuild_factor();
   }
   GmresResult res;
   {
@@ -232,6 +246,8 @@ void MicroUnit::serialize(Bytes& out) const {
   b.put_array(Zbar_committed_.data(), 9);
   b.put(excess_iterations_);
   b.put(refresh_count_);
+  b.put(factor_flops_);
+  b.put(solve_flops_);
 }
 
 void MicroUnit::deserialize(const Bytes& in) {
@@ -256,16 +272,12 @@ void MicroUnit::deserialize(const Bytes& in) {
   b.get_array_into(Zbar_committed_.data(), 9);
   excess_iterations_ = b.get<double>();
   refresh_count_ = b.get<int>();
+  factor_flops_ = b.get<double>();
+  solve_flops_ = b.get<double>();
   if (!b.at_end()) throw Error("micro unit state: trailing bytes");
-  // Rebuild the factor from the very matrix it was made of: the continuation is then
-  // bit-for-bit the same as if the unit had never moved.
+  // The factor is rebuilt from K_factored_ only if the next job reuses it: a unit
+  // migrated at a refresh boundary costs no extra factorization.
   factor_.reset();
-  if (!K_factored_.empty()) {
-    SparseMatrix K = model_->pattern();
-    std::copy(K_factored_.begin(), K_factored_.end(), K.valuePtr());
-    factor_ = make_sparse_factor(factor_kind_);
-    factor_->factorize(K);
-  }
 }
 
 }  // namespace fe2

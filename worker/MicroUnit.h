@@ -54,8 +54,9 @@ class MicroUnit final : public PointModel {
   const SparseFactor* factor() const { return factor_.get(); }
 
  private:
-  bool policy_wants_refresh(const proto::JobInput& in) const;
+  bool refresh_due(const proto::JobInput& in) const;
   void refresh();
+  void rebuild_factor();
   GmresResult step1();
 
   MicroModelPtr model_;
@@ -71,6 +72,8 @@ class MicroUnit final : public PointModel {
   Vec9 Zbar_committed_ = Vec9::Zero();
   double excess_iterations_ = 0.0;  ///< adaptive policy: GMRES iterations beyond one since refresh
   int refresh_count_ = 0;
+  double factor_flops_ = 0.0;       ///< of the last refresh (adaptive policy's cost model)
+  double solve_flops_ = 0.0;
   // --- workspace ---
   System sys_;
   std::unique_ptr<SparseFactor> factor_;

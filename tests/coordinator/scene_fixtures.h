@@ -50,7 +50,7 @@ struct SceneRun {
 inline SceneRun run_scene(const json& j) {
   const RunSpec spec = read_run_spec(j, "");
   LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points, MPI_COMM_WORLD);
+  Simulation sim(spec, points);
   SceneRun r;
   r.result = sim.run();
   r.u = sim.displacement();

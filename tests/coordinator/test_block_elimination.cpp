@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <numeric>
 #include <random>
 
 namespace fe2 {
@@ -32,7 +33,9 @@ TEST(BlockElimination, SchurRouteEqualsDirectSolveOfEquationFive) {
 
   // The full system of Eq. (5), assembled explicitly, with each unit's blocks at its
   // state: A_wk = |e|K, C_k = |e| G R B̄, lower-left |e| (R B̄)ᵀ H, Ā = Σ|e| (RB̄)ᵀ⟨𝔸⟩ RB̄.
-  const MacroSystem sys(spec);
+  std::vector<int> all(spec.mesh.num_tets());
+  std::iota(all.begin(), all.end(), 0);
+  const MacroSystem sys(spec, all);
   const auto pts = tet_points(spec.mesh);
   std::vector<int> offset(nu + 1, 0);
   for (int k = 0; k < nu; ++k) offset[k + 1] = offset[k] + units[k]->model().num_dofs();
@@ -65,7 +68,7 @@ TEST(BlockElimination, SchurRouteEqualsDirectSolveOfEquationFive) {
   ASSERT_LT((M * direct - rhs).norm() / rhs.norm(), 1e-12);
 
   // The Schur route: one Newton iteration of the coordinator (ū starts at 0).
-  Simulation sim(spec, points, MPI_COMM_WORLD);
+  Simulation sim(spec, points);
   StepRecord rec;
   EXPECT_FALSE(sim.newton(0, 1.0, 1.0, rec));  // one iteration cannot converge here
   Eigen::VectorXd du(nbar);

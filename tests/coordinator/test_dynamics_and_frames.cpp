@@ -32,7 +32,7 @@ TEST(Newmark, SuddenLoadPeaksAtTwiceStaticDeflection) {
 
   const RunSpec spec = read_run_spec(cantilever("newmark", 1200, 6.0), "");
   LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points, MPI_COMM_WORLD);
+  Simulation sim(spec, points);
   std::vector<double> w;
   const RunResult r = sim.run([&](const StepRecord&) {
     w.push_back(sim.deformed_position(spec.probes[0].second).z() - 0.5);

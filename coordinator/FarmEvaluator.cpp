@@ -1,0 +1,214 @@
+#include "coordinator/FarmEvaluator.h"
+
+#include "coordinator/Rebalancer.h"
+
+#include "common/cpu_timer.h"
+#include "worker/worker_loop.h"
+
+#include <spdlog/spdlog.h>
+
+#include <thread>
+
+namespace fe2 {
+
+FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& coordinators,
+                             const FarmLayout& layout, const RunSpec& spec, UnitStore* store,
+                             Trace* trace)
+    : transport_(transport),
+      coords_(coordinators),
+      layout_(layout),
+      spec_(spec),
+      store_(store),
+      trace_(trace),
+      server_(transport),
+      placement_(layout.initial_worker_of_unit),
+      t0_(wall_seconds()) {
+  if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
+  if (coords_.rank() == 0) {
+    record_.resize(placement_.size());
+    for (size_t u = 0; u < record_.size(); ++u) {
+      const auto& m = spec.models[spec.model_index_of_tet(static_cast<int>(u))];
+      // State: w, δw₁, committed w (3 n), χ (9 n), K at the last refresh (nnz).
+      record_[u].state_bytes =
+          m.kind == PointModelSpec::Kind::fe2
+              ? 8.0 * (12.0 * m.micro->num_dofs() + static_cast<double>(m.micro->pattern().nonZeros()))
+              : 128.0;
+    }
+  }
+}
+
+void FarmEvaluator::send_to_pure_workers(const proto::Control& c) {
+  if (coords_.rank() != 0) return;
+  Bytes b;
+  c.pack(b);
+  for (int r : layout_.worker_ranks)
+    if (!layout_.is_coordinator(r)) transport_.send(r, proto::Type::control, b);
+}
+
+bool FarmEvaluator::next_job_refreshes(int unit, int step, int iteration) const {
+  const auto& m = spec_.models[spec_.model_index_of_tet(unit)];
+  if (m.kind != PointModelSpec::Kind::fe2) return false;
+  switch (m.micro->options().refresh) {
+    case MicroSolverOptions::Refresh::every_iteration: return true;
+    case MicroSolverOptions::Refresh::fixed:
+      return iteration == 1 && step % m.micro->options().N_t == 0;
+    default: return false;
+  }
+}
+
+void FarmEvaluator::rebalance(int step, int iteration) {
+  Bytes plan_bytes;
+  if (coords_.rank() == 0) {
+    // Cost model: each unit's next job costs what its last job of the same kind did.
+    const int nw = static_cast<int>(layout_.worker_ranks.size());
+    std::vector<int> index_of_rank(layout_.ranks, -1);
+    for (int i = 0; i < nw; ++i) index_of_rank[layout_.worker_ranks[i]] = i;
+    std::vector<UnitCost> cost(record_.size());
+    std::vector<int> where(record_.size());
+    for (size_t u = 0; u < record_.size(); ++u) {
+      const UnitRecord& r = record_[u];
+      const bool refresh = next_job_refreshes(static_cast<int>(u), step, iteration);
+      const double known = r.reuse >= 0 ? r.reuse : r.refresh;
+      cost[u].next = refresh && r.refresh >= 0 ? r.refresh : known;
+      cost[u].rebuild = refresh ? 0.0 : r.refresh_part;
+      cost[u].state_bytes = r.state_bytes;
+      where[u] = index_of_rank[placement_[u]];
+    }
+    const Plan plan = plan_rebalance(cost, where, nw, spec_.farm);
+    proto::Control c;
+    c.command = proto::Command::rebalance;
+    c.step = step;
+    c.iteration = iteration;
+    for (const auto& [u, w] : plan.moves)
+      c.moves.push_back({u, placement_[u], layout_.worker_ranks[w]});
+    if (!c.moves.empty())
+      spdlog::debug("rebalance: {} moves, predicted makespan {:.4g} s -> {:.4g} s",
+                    c.moves.size(), plan.makespan_before, plan.makespan_after);
+    c.pack(plan_bytes);
+  }
+  coords_.bcast(plan_bytes, 0);
+  const proto::Control c = proto::Control::unpack(plan_bytes);
+  if (c.moves.empty()) return;
+  send_to_pure_workers(c);
+  for (const auto& m : c.moves) placement_[m.unit] = m.to;
+  if (store_) {
+    const auto [in, out] = migrate(transport_, *store_, c.moves);
+    client_->count_migrations(in, out);
+  }
+  last_.migrations = static_cast<int>(c.moves.size());
+}
+
+void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
+                             std::vector<proto::JobOutput>& out) {
+  FE2_CHECK(!jobs.empty(), "every coordinator owns at least one unit");
+  const int step = jobs.front().step, iteration = jobs.front().iteration;
+  last_ = IterationTiming{};
+  last_.step = step;
+  last_.iteration = iteration;
+  const bool new_step = step != last_step_;
+  last_step_ = step;
+  if (spec_.farm.policy == FarmOptions::Policy::cost_based &&
+      coords_.allreduce_max(static_cast<int>(have_costs_)) &&
+      (spec_.farm.rebalance_at == FarmOptions::When::iteration || new_step))
+    rebalance(step, iteration);
+
+  // (a) dispatch: pure workers start pulling; this coordinator queues its units' jobs.
+  proto::Control go;
+  go.command = proto::Command::iterate;
+  go.step = step;
+  go.iteration = iteration;
+  go.time = jobs.front().time;
+  go.dt = jobs.front().dt;
+  send_to_pure_workers(go);
+  const double t_start = wall_seconds();
+  std::vector<int> worker_of_job(jobs.size());
+  for (size_t k = 0; k < jobs.size(); ++k) worker_of_job[k] = placement_[jobs[k].unit];
+  server_.begin(jobs, worker_of_job);
+  if (client_) client_->begin(coordinators_of(*store_, layout_.coordinator_of_unit), step, iteration);
+
+  // (b)–(f) serve pulls and work, until all of this coordinator's results are in and
+  // this rank's own units are done.
+  auto client_done = [&] { return !client_ || client_->finished(); };
+  while (!(server_.finished() && client_done())) {
+    const bool server_idle = server_.finished() || !server_.poll(false);
+    if (!client_done()) client_->poll(false);
+    if (server_.finished() && !client_done()) {
+      client_->poll(true);
+    } else if (!server_.finished() && client_done()) {
+      server_.poll(true);
+    } else if (server_idle && !client_done()) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+    }
+  }
+  out = server_.results();
+  const double micro_phase = wall_seconds() - t_start;
+  last_.comm1 = server_.comm1_seconds();
+  last_.comm2 = server_.comm2_seconds();
+  collect_accounts(out, step, iteration, micro_phase, t_start);
+}
+
+void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, int step,
+                                     int iteration, double micro_phase, double t_start) {
+  // Worker stats to rank 0 (from every worker rank, this one included).
+  if (client_) {
+    Bytes b;
+    client_->stats().pack(b);
+    transport_.send(0, proto::Type::stats, std::move(b));
+  }
+  if (coords_.rank() == 0) {
+    for (size_t k = 0; k < layout_.worker_ranks.size(); ++k) {
+      const proto::WorkerStats s = proto::WorkerStats::unpack(transport_.recv(proto::Type::stats, MPI_ANY_SOURCE));
+      last_.bytes += s.bytes_sent + s.bytes_received;
+      last_.jobs += s.jobs;
+      if (trace_) trace_->worker(s, micro_phase, t0_);
+    }
+  }
+  // Per-unit costs to rank 0: the cost model and the unit trace.
+  Bytes mine;
+  ByteWriter w(mine);
+  w.put<uint64_t>(out.size());
+  for (const auto& r : out) proto::pack_result(w, r);
+  const std::vector<Bytes> all = coords_.gather(mine, 0);
+  if (coords_.rank() == 0) {
+    for (const Bytes& b : all) {
+      ByteReader r(b, "unit costs");
+      const auto n = r.get<uint64_t>();
+      for (uint64_t i = 0; i < n; ++i) {
+        const proto::JobOutput o = proto::unpack_result(r);
+        UnitRecord& rec = record_[o.unit];
+        if (o.kind == proto::Refresh::refresh) {
+          rec.refresh = o.cpu_seconds;
+          rec.refresh_part = o.cpu_refresh;
+        } else {
+          rec.reuse = o.cpu_seconds;
+        }
+        if (trace_) trace_->unit(step, iteration, placement_[o.unit], o);
+      }
+    }
+  }
+  have_costs_ = true;
+  (void)t_start;
+}
+
+void FarmEvaluator::commit_step() {
+  proto::Control c;
+  c.command = proto::Command::commit;
+  send_to_pure_workers(c);
+  if (store_) store_->commit();
+}
+
+void FarmEvaluator::rollback_step() {
+  proto::Control c;
+  c.command = proto::Command::rollback;
+  send_to_pure_workers(c);
+  if (store_) store_->rollback();
+}
+
+void FarmEvaluator::shutdown() {
+  proto::Control c;
+  c.command = proto::Command::shutdown;
+  send_to_pure_workers(c);
+  transport_.complete_sends();
+}
+
+}  // namespace fe2

@@ -1,0 +1,69 @@
+#pragma once
+// The point evaluator of a coordinator rank in the MPI task farm (DESIGN §3). In one
+// evaluate() call — one Newton iteration's micro phase, paper Fig. 5 (a)–(f):
+//   rebalance   cost-based policy: coordinator 0 plans from measured per-unit CPU
+//               costs (Rebalancer), every rank learns the moves, states migrate
+//   dispatch    coordinator 0 tells pure workers to pull; each coordinator queues the
+//               jobs of its own units per worker (JobServer)
+//   serve/work  serve pulls and, if this rank also works, run its own units' jobs
+//               (PullClient), until every result of this coordinator's units is in
+//   account     worker stats and per-unit costs reach coordinator 0 (traces, cost model)
+// @note Every member function is collective on the coordinator group.
+#include "coordinator/FarmLayout.h"
+#include "coordinator/JobServer.h"
+#include "coordinator/PointEvaluator.h"
+#include "coordinator/Trace.h"
+#include "worker/PullClient.h"
+
+#include <memory>
+#include <optional>
+
+namespace fe2 {
+
+class FarmEvaluator final : public PointEvaluator {
+ public:
+  /// `store` (null if coordinators do not work), `trace` (rank 0 only) are lent.
+  FarmEvaluator(proto::Transport& transport, const proto::Group& coordinators,
+                const FarmLayout& layout, const RunSpec& spec, UnitStore* store, Trace* trace);
+
+  void evaluate(const std::vector<proto::JobInput>& jobs,
+                std::vector<proto::JobOutput>& out) override;
+  void commit_step() override;
+  void rollback_step() override;
+  /// Rank 0: tells every pure worker to stop.
+  void shutdown();
+
+  /// Communication figures of the last evaluate (on rank 0).
+  const IterationTiming& last() const { return last_; }
+  /// Current placement: unit -> world rank.
+  const std::vector<int>& placement() const { return placement_; }
+
+ private:
+  struct UnitRecord {
+    double reuse = -1.0, refresh = -1.0;  ///< last measured CPU cost of each job kind
+    double refresh_part = 0.0;            ///< CPU of the factorization inside a refresh job
+    double state_bytes = 0.0;
+  };
+  void send_to_pure_workers(const proto::Control& c);
+  void rebalance(int step, int iteration);
+  bool next_job_refreshes(int unit, int step, int iteration) const;
+  void collect_accounts(const std::vector<proto::JobOutput>& out, int step, int iteration,
+                        double micro_phase, double t0);
+
+  proto::Transport& transport_;
+  const proto::Group& coords_;
+  const FarmLayout& layout_;
+  const RunSpec& spec_;
+  UnitStore* store_;
+  Trace* trace_;
+  JobServer server_;
+  std::optional<PullClient> client_;
+  std::vector<int> placement_;
+  std::vector<UnitRecord> record_;  ///< rank 0
+  bool have_costs_ = false;
+  int last_step_ = -1;
+  IterationTiming last_;
+  double t0_;
+};
+
+}  // namespace fe2

@@ -1,0 +1,33 @@
+#pragma once
+// Who does what in a run of N ranks (DESIGN §3): the first n_c ranks coordinate
+// (own macro elements exclusively, paper Eq. 12, and solve the Schur system together);
+// the worker ranks hold the units — every rank, or only the non-coordinators. Computed
+// identically on every rank from the spec and N, so no rank has to be told.
+#include "coordinator/RunSpec.h"
+
+#include <vector>
+
+namespace fe2 {
+
+struct FarmLayout {
+  int ranks = 1;
+  int coordinators = 1;
+  std::vector<int> worker_ranks;         ///< world ranks that hold units
+  std::vector<int> coordinator_of_unit;  ///< per unit (= tet): owning coordinator's world rank
+  std::vector<int> initial_worker_of_unit;  ///< per unit: world rank holding it at the start
+
+  bool is_coordinator(int rank) const { return rank < coordinators; }
+  bool is_worker(int rank) const;
+  /// Tets owned by coordinator `c`, ascending.
+  std::vector<int> owned_units(int c) const;
+
+  /// Throws InputError (before any work) if the coordinator count cannot work.
+  /// `coordinators_override` > 0 replaces the spec's farm.coordinators.
+  static FarmLayout make(const RunSpec& spec, int ranks, int coordinators_override = 0);
+};
+
+/// Exclusive partition of the tets into `parts` compact parts (METIS on the dual graph;
+/// contiguous blocks when METIS is not needed). Deterministic.
+std::vector<int> partition_elements(const TetMesh& mesh, int parts);
+
+}  // namespace fe2

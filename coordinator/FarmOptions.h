@@ -1,0 +1,18 @@
+#pragma once
+// How a run is spread over MPI ranks (spec section "farm"; DESIGN §3).
+#include <string>
+
+namespace fe2 {
+
+struct FarmOptions {
+  int coordinators = 1;             ///< first n_c ranks own the macro problem
+  bool coordinators_work = true;    ///< coordinator ranks also hold units (paper ranks 0–63)
+  enum class Policy { round_robin, contiguous, cost_based } policy = Policy::cost_based;
+  enum class When { iteration, step } rebalance_at = When::iteration;
+  int batch = 2;                    ///< jobs per pull
+  double min_gain = 0.03;           ///< rebalance only if the predicted makespan drops this much
+  double latency = 2e-6;            ///< network model: seconds per message
+  double bandwidth = 5e9;           ///< network model: bytes per second (paper: 5 GB/s links)
+};
+
+}  // namespace fe2

@@ -1,0 +1,59 @@
+#include "coordinator/JobServer.h"
+
+#include "common/cpu_timer.h"
+
+namespace fe2 {
+
+void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job) {
+  jobs_ = jobs;
+  results_.assign(jobs.size(), proto::JobOutput{});
+  job_of_unit_.clear();
+  queues_.clear();
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    job_of_unit_[jobs[k].unit] = static_cast<int>(k);
+    queues_[worker_of_job[k]].jobs.push_back(static_cast<int>(k));
+  }
+  open_ = static_cast<int>(queues_.size());
+  comm1_ = comm2_ = 0.0;
+}
+
+bool JobServer::poll(bool block) {
+  if (finished()) return true;
+  Bytes in;
+  int from = -1;
+  double t0 = wall_seconds();
+  if (!transport_.try_recv(proto::Type::pull, in, &from)) {
+    if (!block) return false;
+    in = transport_.recv(proto::Type::pull, MPI_ANY_SOURCE, &from);
+    t0 = wall_seconds();  // waiting is not communication cost
+  }
+  const proto::Pull pull = proto::Pull::unpack(in);
+  auto q = queues_.find(from);
+  FE2_CHECK(q != queues_.end() && !q->second.done, "pull from rank {} which has no jobs here", from);
+  for (const auto& r : pull.results) {
+    auto it = job_of_unit_.find(r.unit);
+    FE2_CHECK(it != job_of_unit_.end(), "result for unit {} which is not in this queue", r.unit);
+    results_[it->second] = r;
+  }
+  const double t1 = wall_seconds();
+  comm2_ += t1 - t0;
+
+  proto::Batch batch;
+  Queue& queue = q->second;
+  while (!queue.jobs.empty() && static_cast<int>(batch.jobs.size()) < pull.max_jobs) {
+    batch.jobs.push_back(jobs_[queue.jobs.front()]);
+    queue.jobs.pop_front();
+  }
+  if (batch.jobs.empty()) {
+    batch.done = true;
+    queue.done = true;
+    --open_;
+  }
+  Bytes out;
+  batch.pack(out);
+  transport_.send(from, proto::Type::batch, std::move(out));
+  comm1_ += wall_seconds() - t1;
+  return finished();
+}
+
+}  // namespace fe2

@@ -1,0 +1,44 @@
+#pragma once
+// A coordinator's job queue for one Newton iteration: the jobs of its own units, one
+// queue per worker rank (a unit runs where its state lives). Each Pull from a worker
+// brings the results of its last batch and asks for the next; the reply is up to
+// `max_jobs` more, or "done" once that worker's queue is empty.
+#include "proto/Transport.h"
+
+#include <deque>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace fe2 {
+
+class JobServer {
+ public:
+  explicit JobServer(proto::Transport& transport) : transport_(transport) {}
+
+  /// `worker_of_job[k]`: world rank holding jobs[k].unit.
+  void begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job);
+  /// Serves one waiting Pull (or waits for one if `block`). True once every worker with
+  /// jobs here has been told "done" (so every result is in).
+  bool poll(bool block);
+  bool finished() const { return open_ == 0; }
+  /// Results in job order.
+  const std::vector<proto::JobOutput>& results() const { return results_; }
+  double comm1_seconds() const { return comm1_; }  ///< packing and posting job batches
+  double comm2_seconds() const { return comm2_; }  ///< receiving and unpacking results
+
+ private:
+  struct Queue {
+    std::deque<int> jobs;  ///< indices into jobs_
+    bool done = false;
+  };
+  proto::Transport& transport_;
+  std::vector<proto::JobInput> jobs_;
+  std::vector<proto::JobOutput> results_;
+  std::unordered_map<int, int> job_of_unit_;
+  std::map<int, Queue> queues_;
+  int open_ = 0;
+  double comm1_ = 0.0, comm2_ = 0.0;
+};
+
+}  // namespace fe2

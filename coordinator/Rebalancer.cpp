@@ -1,0 +1,100 @@
+#include "coordinator/Rebalancer.h"
+
+#include <algorithm>
+#include <set>
+
+namespace fe2 {
+
+Placement static_placement(int units, int workers, FarmOptions::Policy policy) {
+  Placement p;
+  p.worker_of_unit.resize(units);
+  for (int u = 0; u < units; ++u)
+    p.worker_of_unit[u] = policy == FarmOptions::Policy::round_robin
+                              ? u % workers
+                              : static_cast<int>(static_cast<long long>(u) * workers / units);
+  return p;
+}
+
+std::vector<double> worker_loads(const std::vector<UnitCost>& cost,
+                                 const std::vector<int>& worker_of_unit, int workers) {
+  std::vector<double> load(workers, 0.0);
+  for (size_t u = 0; u < cost.size(); ++u) load[worker_of_unit[u]] += cost[u].next;
+  return load;
+}
+
+double transfer_seconds(double bytes, const FarmOptions& o) {
+  return o.latency + bytes / o.bandwidth;
+}
+
+Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
+                    int workers, const FarmOptions& o) {
+  Plan plan;
+  plan.worker_of_unit = worker_of_unit;
+  std::vector<double> load = worker_loads(cost, worker_of_unit, workers);
+  plan.makespan_before = *std::max_element(load.begin(), load.end());
+  std::vector<std::vector<int>> held(workers);
+  for (size_t u = 0; u < cost.size(); ++u) held[worker_of_unit[u]].push_back(static_cast<int>(u));
+  std::set<std::pair<double, int>> by_load;  // (load, worker): O(log W) max and min
+  for (int w = 0; w < workers; ++w) by_load.emplace(load[w], w);
+  std::vector<char> moved(cost.size(), 0);
+  auto move_cost = [&](int u) { return transfer_seconds(cost[u].state_bytes, o); };
+  auto set_load = [&](int w, double v) {
+    by_load.erase({load[w], w});
+    load[w] = v;
+    by_load.emplace(v, w);
+  };
+
+  for (size_t round = 0; round < cost.size(); ++round) {
+    const int hi = by_load.rbegin()->second;
+    const int lo = by_load.begin()->second;
+    if (hi == lo) break;
+    // Best single move hi -> lo, and best swap (u on hi) <-> (v on lo).
+    int best_u = -1, best_v = -1;
+    double best = load[hi];
+    for (int u : held[hi]) {
+      if (moved[u]) continue;
+      const double t = move_cost(u);
+      const double m = std::max(load[hi] - cost[u].next + t,
+                                load[lo] + cost[u].next + t + cost[u].rebuild);
+      if (m < best) best = m, best_u = u, best_v = -1;
+      for (int v : held[lo]) {
+        if (moved[v]) continue;
+        const double tv = move_cost(v);
+        const double ms = std::max(load[hi] - cost[u].next + cost[v].next + t + tv + cost[v].rebuild,
+                                   load[lo] - cost[v].next + cost[u].next + t + tv + cost[u].rebuild);
+        if (ms < best) best = ms, best_u = u, best_v = v;
+      }
+    }
+    if (best_u < 0) break;
+    const double t = move_cost(best_u);
+    double new_hi = load[hi] - cost[best_u].next + t;
+    double new_lo = load[lo] + cost[best_u].next + t + cost[best_u].rebuild;
+    held[hi].erase(std::find(held[hi].begin(), held[hi].end(), best_u));
+    held[lo].push_back(best_u);
+    moved[best_u] = 1;
+    plan.worker_of_unit[best_u] = lo;
+    if (best_v >= 0) {
+      const double tv = move_cost(best_v);
+      new_hi += cost[best_v].next + tv + cost[best_v].rebuild;
+      new_lo += tv - cost[best_v].next;
+      held[lo].erase(std::find(held[lo].begin(), held[lo].end(), best_v));
+      held[hi].push_back(best_v);
+      moved[best_v] = 1;
+      plan.worker_of_unit[best_v] = hi;
+    }
+    set_load(hi, new_hi);
+    set_load(lo, new_lo);
+  }
+  plan.makespan_after = *std::max_element(load.begin(), load.end());
+  if (plan.makespan_after > (1.0 - o.min_gain) * plan.makespan_before) {
+    plan.worker_of_unit = worker_of_unit;  // not worth the moves
+    plan.makespan_after = plan.makespan_before;
+    return plan;
+  }
+  for (size_t u = 0; u < cost.size(); ++u)
+    if (plan.worker_of_unit[u] != worker_of_unit[u])
+      plan.moves.emplace_back(static_cast<int>(u), plan.worker_of_unit[u]);
+  return plan;
+}
+
+}  // namespace fe2

@@ -1,0 +1,55 @@
+#pragma once
+// The scheduler's cost model and rebalancer (DESIGN §3), free of MPI so that the run
+// and `fe2heart farm-sim` use the very same code.
+//
+// Predicted cost of a unit's next job: its last measured CPU cost of the same kind
+// (refresh or reuse). Moving a unit costs the transfer of its state (latency +
+// bytes / bandwidth, paid by both ends) and, unless its next job refreshes the
+// factor anyway, one factorization at the destination to rebuild it: this is how the
+// plan prefers migrating at factor-refresh boundaries.
+//
+// Plan: starting from the current placement, repeatedly take the most and the least
+// loaded workers and apply the single move (hi -> lo) or swap (hi <-> lo) that lowers
+// the larger of their two loads the most, each unit moving at most once per plan,
+// until nothing helps; keep the plan only if the predicted makespan drops by at least
+// min_gain. Deterministic (ties go to the lowest unit id).
+#include "coordinator/FarmOptions.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fe2 {
+
+struct UnitCost {
+  double next = 0.0;        ///< predicted CPU seconds of the next job
+  double rebuild = 0.0;     ///< extra CPU seconds at a new worker (0 at a refresh boundary)
+  double state_bytes = 0.0; ///< serialized state size
+};
+
+struct Placement {
+  std::vector<int> worker_of_unit;  ///< unit -> worker index (into the worker list)
+};
+
+struct Plan {
+  std::vector<int> worker_of_unit;
+  std::vector<std::pair<int, int>> moves;  ///< (unit, new worker)
+  double makespan_before = 0.0;            ///< predicted, no moves
+  double makespan_after = 0.0;             ///< predicted, with migration costs
+};
+
+/// Initial placement of `units` on `workers` under a static policy (cost-based starts
+/// contiguous, then is rebalanced from measured costs).
+Placement static_placement(int units, int workers, FarmOptions::Policy policy);
+
+/// Predicted load per worker of a placement (no migration costs).
+std::vector<double> worker_loads(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
+                                 int workers);
+
+/// Seconds to move `bytes` between two ranks under the network model.
+double transfer_seconds(double bytes, const FarmOptions& o);
+
+/// Cost-based plan from the current placement.
+Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
+                    int workers, const FarmOptions& o);
+
+}  // namespace fe2

@@ -1,0 +1,41 @@
+#pragma once
+// Load-balance traces, JSON Lines in the output folder (DESIGN §3, paper §IV-C):
+//   trace_iterations.jsonl  per (step, iteration): entire, micro_lc, macro, comm1,
+//                           comm2 (seconds, coordinator 0), bytes, migrations
+//   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
+//                           wall), idle, wait, t_begin/t_end, migrations, bytes
+//   trace_units.jsonl       per (step, iteration, unit): worker, cost, kind, GMRES
+// Written by rank 0 only; every line is flushed, so a stopped run keeps its trace.
+#include "proto/job.h"
+#include "proto/messages.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <string>
+
+namespace fe2 {
+
+struct IterationTiming {
+  int step = 0, iteration = 0;
+  double entire = 0.0;    ///< whole Newton iteration, (a)–(j)
+  double micro_lc = 0.0;  ///< dispatch to last result: micro work + load imbalance + comm
+  double macro = 0.0;     ///< (g) assembly and (h) solve
+  double comm1 = 0.0, comm2 = 0.0;
+  long long bytes = 0;
+  int migrations = 0;
+  int jobs = 0;
+};
+
+class Trace {
+ public:
+  explicit Trace(const std::string& dir);
+  void iteration(const IterationTiming& t);
+  void worker(const proto::WorkerStats& s, double micro_phase_seconds, double t0);
+  void unit(int step, int iteration, int worker, const proto::JobOutput& r);
+
+ private:
+  std::ofstream iterations_, workers_, units_;
+};
+
+}  // namespace fe2

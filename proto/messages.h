@@ -1,0 +1,106 @@
+#pragma once
+// Every message between fe2heart ranks, each one small type with pack / unpack, and a
+// validate that runs on receipt (after preCICE's SerializedMesh). Wire layout:
+//
+//   header   u16 protocol version | u16 message type
+//   Hello    u64 spec hash | i32 rank | i32 ranks
+//   Control  u8 command | i32 step | i32 iteration | f64 time | f64 dt |
+//            u64 n moves | n × (i32 unit, i32 from, i32 to)
+//   Pull     i32 worker | i32 max_jobs | u64 n | n × JobOutput   (results + next request)
+//   Batch    u8 done | u64 n | n × JobInput
+//   Stats    WorkerStats (fixed-size record)
+//   State    i32 unit | u64 n | n bytes (a unit's serialized state)
+//   JobInput  = i32 unit, step, iteration | f64 time, dt | u8 apply_update, force_refresh |
+//               9 f64 Z̄ | 9 f64 Ż̄                                   (kJobInputBytes)
+//   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
+//               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
+//               u8 status | message string                          (kJobOutputBytes + text)
+// Little-endian, native doubles: all ranks of one job run on one architecture.
+#include "common/bytes.h"
+#include "proto/job.h"
+#include "proto/version.h"
+
+#include <string>
+#include <vector>
+
+namespace fe2::proto {
+
+enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6 };
+
+/// Point-to-point tags; one per message type.
+constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
+
+constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1;
+
+/// Reads and checks the header; throws fe2::Error naming both versions on mismatch.
+void check_header(ByteReader& r, Type expected);
+
+struct Hello {
+  uint64_t spec_hash = 0;
+  int32_t rank = 0, ranks = 0;
+  void pack(Bytes& out) const;
+  static Hello unpack(const Bytes& in);
+};
+
+enum class Command : uint8_t { iterate = 1, commit = 2, rollback = 3, rebalance = 4, shutdown = 5 };
+
+struct Move {
+  int32_t unit, from, to;
+};
+
+struct Control {
+  Command command = Command::shutdown;
+  int32_t step = 0, iteration = 0;
+  double time = 0.0, dt = 0.0;
+  std::vector<Move> moves;  ///< rebalance only
+  void pack(Bytes& out) const;
+  static Control unpack(const Bytes& in);
+};
+
+/// A worker's results for its last batch from this coordinator, and its request for
+/// up to `max_jobs` more.
+struct Pull {
+  int32_t worker = -1;
+  int32_t max_jobs = 1;
+  std::vector<JobOutput> results;
+  void pack(Bytes& out) const;
+  static Pull unpack(const Bytes& in);
+};
+
+/// Jobs for one worker; `done` means this coordinator has nothing more for it in this
+/// iteration (and has all its results).
+struct Batch {
+  bool done = false;
+  std::vector<JobInput> jobs;
+  void pack(Bytes& out) const;
+  static Batch unpack(const Bytes& in);
+};
+
+/// One worker's account of one Newton iteration (traces, paper §IV-C).
+struct WorkerStats {
+  int32_t worker = -1, step = 0, iteration = 0;
+  int32_t units_held = 0, jobs = 0;
+  int32_t migrations_in = 0, migrations_out = 0;
+  double t_begin = 0.0, t_end = 0.0;   ///< wall clock of the micro phase on this worker
+  double busy_cpu = 0.0;               ///< CPU seconds in unit jobs
+  double busy_wall = 0.0;
+  double wait_wall = 0.0;              ///< blocked waiting for batches (comm1 as seen here)
+  int64_t bytes_sent = 0, bytes_received = 0;
+  void pack(Bytes& out) const;
+  static WorkerStats unpack(const Bytes& in);
+};
+
+struct UnitState {
+  int32_t unit = -1;
+  Bytes state;
+  void pack(Bytes& out) const;
+  static UnitState unpack(const Bytes& in);
+};
+
+void pack_job(ByteWriter& w, const JobInput& j);
+JobInput unpack_job(ByteReader& r);
+void pack_result(ByteWriter& w, const JobOutput& o);
+JobOutput unpack_result(ByteReader& r);
+
+}  // namespace fe2::proto

@@ -1,0 +1,9 @@
+#pragma once
+#include <cstdint>
+
+namespace fe2::proto {
+
+/// Bumped whenever any message layout changes. Ranks refuse to talk across versions.
+constexpr uint16_t kProtocolVersion = 1;
+
+}  // namespace fe2::proto

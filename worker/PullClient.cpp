@@ -1,0 +1,114 @@
+#include "worker/PullClient.h"
+
+#include "common/cpu_timer.h"
+
+#include <algorithm>
+#include <thread>
+
+namespace fe2 {
+
+PullClient::PullClient(proto::Transport& transport, UnitStore& store, int batch)
+    : transport_(transport), store_(store), batch_(std::max(1, batch)) {}
+
+void PullClient::begin(const std::vector<int>& coordinators, int step, int iteration) {
+  sources_.clear();
+  for (int c : coordinators) sources_.push_back(Source{c});
+  stats_ = proto::WorkerStats{};
+  stats_.worker = transport_.rank();
+  stats_.step = step;
+  stats_.iteration = iteration;
+  stats_.units_held = store_.size();
+  stats_.t_begin = wall_seconds();
+  sent0_ = transport_.bytes_sent();
+  received0_ = transport_.bytes_received();
+  if (sources_.empty()) close_stats();
+}
+
+void PullClient::close_stats() {
+  stats_.t_end = wall_seconds();
+  stats_.bytes_sent = transport_.bytes_sent() - sent0_;
+  stats_.bytes_received = transport_.bytes_received() - received0_;
+  stats_.migrations_in = migrations_in_;
+  stats_.migrations_out = migrations_out_;
+  migrations_in_ = migrations_out_ = 0;
+}
+
+bool PullClient::finished() const {
+  return std::all_of(sources_.begin(), sources_.end(), [](const Source& s) { return s.done; });
+}
+
+bool PullClient::poll(bool block) {
+  if (finished()) return true;
+  // Ask every coordinator whose queue here ran dry (with the results so far).
+  for (Source& s : sources_)
+    if (!s.done && !s.outstanding && s.queue.empty()) {
+      proto::Pull p;
+      p.worker = transport_.rank();
+      p.max_jobs = batch_;
+      p.results = std::move(s.results);
+      s.results.clear();
+      Bytes b;
+      p.pack(b);
+      transport_.send(s.rank, proto::Type::pull, std::move(b));
+      s.outstanding = true;
+    }
+  // Run one job, if any is queued.
+  for (Source& s : sources_)
+    if (!s.queue.empty()) {
+      const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
+      s.results.push_back(store_.run(s.queue.front()));
+      s.queue.pop_front();
+      stats_.busy_cpu += thread_cpu_seconds() - c0;
+      stats_.busy_wall += wall_seconds() - w0;
+      ++stats_.jobs;
+      return false;
+    }
+  // Nothing to run: take a batch that has arrived (or wait for one).
+  Bytes b;
+  int from = -1;
+  const double w0 = wall_seconds();
+  bool got = transport_.try_recv(proto::Type::batch, b, &from);
+  if (!got && block) {
+    b = transport_.recv(proto::Type::batch, MPI_ANY_SOURCE, &from);
+    got = true;
+  }
+  stats_.wait_wall += wall_seconds() - w0;
+  if (!got) return false;
+  const proto::Batch batch = proto::Batch::unpack(b);
+  auto it = std::find_if(sources_.begin(), sources_.end(), [&](const Source& s) { return s.rank == from; });
+  FE2_CHECK(it != sources_.end() && it->outstanding, "unexpected batch from rank {}", from);
+  it->outstanding = false;
+  it->done = batch.done;
+  for (const auto& j : batch.jobs) it->queue.push_back(j);
+  if (finished()) close_stats();
+  return finished();
+}
+
+proto::WorkerStats PullClient::stats() const { return stats_; }
+
+std::pair<int, int> migrate(proto::Transport& transport, UnitStore& store,
+                            const std::vector<proto::Move>& moves) {
+  const int me = transport.rank();
+  int sent = 0, received = 0;
+  for (const auto& m : moves)
+    if (m.from == me) {
+      proto::UnitState s;
+      s.unit = m.unit;
+      s.state = store.take(m.unit);
+      Bytes b;
+      s.pack(b);
+      transport.send(m.to, proto::Type::state, std::move(b));
+      ++sent;
+    }
+  for (const auto& m : moves)
+    if (m.to == me) {
+      const proto::UnitState s = proto::UnitState::unpack(transport.recv(proto::Type::state, m.from));
+      FE2_CHECK(s.unit == m.unit, "expected the state of unit {} from rank {}, got unit {}", m.unit,
+                m.from, s.unit);
+      store.put(s.unit, s.state);
+      ++received;
+    }
+  return {received, sent};
+}
+
+}  // namespace fe2

@@ -1,0 +1,53 @@
+#pragma once
+// The worker side of one Newton iteration (paper Fig. 5 (a)–(f), DESIGN §3): pull
+// batches of jobs for the units living here from each coordinator that owns some of
+// them, run them, and send each batch's results back with the next pull, until every
+// coordinator says it is done. Non-blocking steps, so a rank that also coordinates
+// can serve its own queue in between.
+#include "proto/Transport.h"
+#include "worker/UnitStore.h"
+
+#include <deque>
+#include <vector>
+
+namespace fe2 {
+
+class PullClient {
+ public:
+  PullClient(proto::Transport& transport, UnitStore& store, int batch);
+
+  /// Starts an iteration: pull from these coordinator ranks.
+  void begin(const std::vector<int>& coordinators, int step, int iteration);
+  /// Makes progress (one job, or one message); `block` waits for a batch when there is
+  /// nothing else to do. Returns true once every coordinator is done.
+  bool poll(bool block);
+  bool finished() const;
+  /// This iteration's account (valid after finished()).
+  proto::WorkerStats stats() const;
+  void count_migrations(int in, int out) { migrations_in_ += in, migrations_out_ += out; }
+
+ private:
+  void close_stats();
+  struct Source {
+    int rank;
+    bool outstanding = false;
+    bool done = false;
+    std::deque<proto::JobInput> queue;
+    std::vector<proto::JobOutput> results;
+  };
+  proto::Transport& transport_;
+  UnitStore& store_;
+  int batch_;
+  std::vector<Source> sources_;
+  proto::WorkerStats stats_;
+  int migrations_in_ = 0, migrations_out_ = 0;
+  int64_t sent0_ = 0, received0_ = 0;
+};
+
+/// Executes the moves of a rebalance that involve this rank: sends out the units it
+/// gives away and receives those it gets (same move order on both ends). Returns
+/// (received, sent).
+std::pair<int, int> migrate(proto::Transport& transport, UnitStore& store,
+                            const std::vector<proto::Move>& moves);
+
+}  // namespace fe2

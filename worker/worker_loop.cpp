@@ -1,0 +1,42 @@
+#include "worker/worker_loop.h"
+
+#include "worker/PullClient.h"
+
+#include <set>
+
+namespace fe2 {
+
+std::vector<int> coordinators_of(const UnitStore& store, const std::vector<int>& coordinator_of_unit) {
+  std::set<int> c;
+  for (int u : store.units()) c.insert(coordinator_of_unit[u]);
+  return {c.begin(), c.end()};
+}
+
+void run_worker_loop(proto::Transport& transport, UnitStore& store,
+                     const std::vector<int>& coordinator_of_unit, int batch) {
+  PullClient client(transport, store, batch);
+  for (;;) {
+    const proto::Control c = proto::Control::unpack(transport.recv(proto::Type::control, 0));
+    switch (c.command) {
+      case proto::Command::iterate: {
+        client.begin(coordinators_of(store, coordinator_of_unit), c.step, c.iteration);
+        while (!client.poll(true)) {
+        }
+        Bytes b;
+        client.stats().pack(b);
+        transport.send(0, proto::Type::stats, std::move(b));
+        break;
+      }
+      case proto::Command::commit: store.commit(); break;
+      case proto::Command::rollback: store.rollback(); break;
+      case proto::Command::rebalance: {
+        const auto [in, out] = migrate(transport, store, c.moves);
+        client.count_migrations(in, out);
+        break;
+      }
+      case proto::Command::shutdown: transport.complete_sends(); return;
+    }
+  }
+}
+
+}  // namespace fe2
