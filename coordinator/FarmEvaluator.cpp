@@ -25,15 +25,16 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
       t0_(wall_seconds()) {
   if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
   if (coords_.rank() == 0) {
-    record_.resize(placement_.size());
-    for (size_t u = 0; u < record_.size(); ++u) {
+    std::vector<double> bytes(placement_.size());
+    for (size_t u = 0; u < bytes.size(); ++u) {
       const auto& m = spec.models[spec.model_index_of_tet(static_cast<int>(u))];
       // State: w, δw₁, committed w (3 n), χ (9 n), K at the last refresh (nnz).
-      record_[u].state_bytes =
-          m.kind == PointModelSpec::Kind::fe2
-              ? 8.0 * (12.0 * m.micro->num_dofs() + static_cast<double>(m.micro->pattern().nonZeros()))
-              : 128.0;
+      bytes[u] = m.kind == PointModelSpec::Kind::fe2
+                     ? 8.0 * (12.0 * m.micro->num_dofs() +
+                              static_cast<double>(m.micro->pattern().nonZeros()))
+                     : 128.0;
     }
+    costs_.emplace(std::move(bytes));
   }
 }
 
@@ -63,17 +64,10 @@ void FarmEvaluator::rebalance(int step, int iteration) {
     const int nw = static_cast<int>(layout_.worker_ranks.size());
     std::vector<int> index_of_rank(layout_.ranks, -1);
     for (int i = 0; i < nw; ++i) index_of_rank[layout_.worker_ranks[i]] = i;
-    std::vector<UnitCost> cost(record_.size());
-    std::vector<int> where(record_.size());
-    for (size_t u = 0; u < record_.size(); ++u) {
-      const UnitRecord& r = record_[u];
-      const bool refresh = next_job_refreshes(static_cast<int>(u), step, iteration);
-      const double known = r.reuse >= 0 ? r.reuse : r.refresh;
-      cost[u].next = refresh && r.refresh >= 0 ? r.refresh : known;
-      cost[u].rebuild = refresh ? 0.0 : r.refresh_part;
-      cost[u].state_bytes = r.state_bytes;
-      where[u] = index_of_rank[placement_[u]];
-    }
+    const std::vector<UnitCost> cost =
+        costs_->predict([&](int u) { return next_job_refreshes(u, step, iteration); });
+    std::vector<int> where(placement_.size());
+    for (size_t u = 0; u < where.size(); ++u) where[u] = index_of_rank[placement_[u]];
     const Plan plan = plan_rebalance(cost, where, nw, spec_.farm);
     proto::Control c;
     c.command = proto::Command::rebalance;
@@ -175,13 +169,7 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       const auto n = r.get<uint64_t>();
       for (uint64_t i = 0; i < n; ++i) {
         const proto::JobOutput o = proto::unpack_result(r);
-        UnitRecord& rec = record_[o.unit];
-        if (o.kind == proto::Refresh::refresh) {
-          rec.refresh = o.cpu_seconds;
-          rec.refresh_part = o.cpu_refresh;
-        } else {
-          rec.reuse = o.cpu_seconds;
-        }
+        costs_->observe(o.unit, o.kind == proto::Refresh::refresh, o.cpu_seconds, o.cpu_refresh);
         if (trace_) trace_->unit(step, iteration, placement_[o.unit], o);
       }
     }

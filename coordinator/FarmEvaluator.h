@@ -11,6 +11,7 @@
 // @note Every member function is collective on the coordinator group.
 #include "coordinator/FarmLayout.h"
 #include "coordinator/JobServer.h"
+#include "coordinator/Rebalancer.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/Trace.h"
 #include "worker/PullClient.h"
@@ -39,11 +40,6 @@ class FarmEvaluator final : public PointEvaluator {
   const std::vector<int>& placement() const { return placement_; }
 
  private:
-  struct UnitRecord {
-    double reuse = -1.0, refresh = -1.0;  ///< last measured CPU cost of each job kind
-    double refresh_part = 0.0;            ///< CPU of the factorization inside a refresh job
-    double state_bytes = 0.0;
-  };
   void send_to_pure_workers(const proto::Control& c);
   void rebalance(int step, int iteration);
   bool next_job_refreshes(int unit, int step, int iteration) const;
@@ -59,7 +55,7 @@ class FarmEvaluator final : public PointEvaluator {
   JobServer server_;
   std::optional<PullClient> client_;
   std::vector<int> placement_;
-  std::vector<UnitRecord> record_;  ///< rank 0
+  std::optional<CostModel> costs_;  ///< rank 0
   bool have_costs_ = false;
   int last_step_ = -1;
   IterationTiming last_;

@@ -5,6 +5,31 @@
 
 namespace fe2 {
 
+CostModel::CostModel(std::vector<double> state_bytes) : rec_(state_bytes.size()) {
+  for (size_t u = 0; u < rec_.size(); ++u) rec_[u].state_bytes = state_bytes[u];
+}
+
+void CostModel::observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh) {
+  Record& r = rec_[unit];
+  if (refreshed) {
+    r.refresh = cpu_seconds;
+    r.refresh_part = cpu_refresh;
+  } else {
+    r.reuse = cpu_seconds;
+  }
+  known_ = true;
+}
+
+UnitCost CostModel::predict_one(int unit, bool refreshes) const {
+  const Record& r = rec_[unit];
+  UnitCost c;
+  const double any = r.reuse >= 0 ? r.reuse : std::max(0.0, r.refresh);
+  c.next = refreshes && r.refresh >= 0 ? r.refresh : any;
+  c.rebuild = refreshes ? 0.0 : r.refresh_part;  // moving at a refresh boundary is free
+  c.state_bytes = r.state_bytes;
+  return c;
+}
+
 Placement static_placement(int units, int workers, FarmOptions::Policy policy) {
   Placement p;
   p.worker_of_unit.resize(units);

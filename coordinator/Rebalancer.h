@@ -37,6 +37,33 @@ struct Plan {
   double makespan_after = 0.0;             ///< predicted, with migration costs
 };
 
+/// Per-unit measured costs and the prediction of each unit's next job (the cost model
+/// shared by the run and farm-sim).
+class CostModel {
+ public:
+  explicit CostModel(std::vector<double> state_bytes);
+  /// A measured job: CPU seconds of the whole job and of its factorization, if any.
+  void observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh);
+  /// The UnitCost of each unit's next job; `refreshes(u)` says if it will refresh.
+  template <class RefreshPredicate>
+  std::vector<UnitCost> predict(RefreshPredicate refreshes) const {
+    std::vector<UnitCost> c(rec_.size());
+    for (size_t u = 0; u < rec_.size(); ++u) c[u] = predict_one(static_cast<int>(u), refreshes(static_cast<int>(u)));
+    return c;
+  }
+  UnitCost predict_one(int unit, bool refreshes) const;
+  bool known() const { return known_; }
+
+ private:
+  struct Record {
+    double reuse = -1.0, refresh = -1.0;  ///< last measured CPU cost of each job kind
+    double refresh_part = 0.0;            ///< CPU of the factorization inside a refresh job
+    double state_bytes = 0.0;
+  };
+  std::vector<Record> rec_;
+  bool known_ = false;
+};
+
 /// Initial placement of `units` on `workers` under a static policy (cost-based starts
 /// contiguous, then is rebalanced from measured costs).
 Placement static_placement(int units, int workers, FarmOptions::Policy policy);

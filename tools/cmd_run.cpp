@@ -86,7 +86,11 @@ int run(const RunOptions& o) {
   const proto::Group world(MPI_COMM_WORLD);
   const int rank = world.rank();
   // Input errors surface here identically on every rank: all exit 2, none hangs.
-  const RunSpec spec = read_run_spec_file(o.spec);
+  RunSpec spec = read_run_spec_file(o.spec);
+  if (!o.policy.empty())
+    spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
+                       : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
+                                                  : FarmOptions::Policy::cost_based;
   const FarmLayout layout = FarmLayout::make(spec, world.size(), o.coordinators);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only

@@ -1,6 +1,7 @@
 #pragma once
 // The fe2heart subcommands; each returns the process exit code.
 #include <string>
+#include <vector>
 
 namespace fe2::cli {
 
@@ -8,6 +9,7 @@ struct RunOptions {
   std::string spec;
   std::string out;
   int coordinators = 0;  ///< 0: from the spec
+  std::string policy;    ///< empty: from the spec
 };
 int run(const RunOptions& o);
 int validate(const std::string& spec);
@@ -25,5 +27,21 @@ struct BenchOptions {
   double stale_stretch = 0.002;  ///< how far Z̄ moves from the factored state
 };
 int bench_unit(const BenchOptions& o);
+
+int trace_summary(const std::string& dir, bool as_json);
+int trace_plot(const std::string& dir, const std::string& out);
+
+struct FarmSimOptions {
+  std::string dir;
+  std::vector<int> workers;                     ///< empty: 6144, 60000, 600000
+  std::vector<int> units_per_worker = {1, 4};
+  std::string policy = "cost_based";
+  double latency = 2e-6;
+  double bandwidth = 5e9;
+  int batch = 2;
+  double macro_scale = 1.0;
+  long long max_units = 3000000;
+};
+int farm_sim(const FarmSimOptions& o);
 
 }  // namespace fe2::cli

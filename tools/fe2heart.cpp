@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   c_run->add_option("--coordinators", run.coordinators,
                     "coordinator ranks (overrides farm.coordinators in the spec)")
       ->check(CLI::Range(1, 1000000));
+  c_run->add_option("--policy", run.policy, "unit placement (overrides farm.policy)")
+      ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
 
   std::string validate_spec;
   auto* c_validate = app.add_subcommand("validate", "check a run or unit spec and its meshes");
@@ -51,6 +53,34 @@ int main(int argc, char** argv) {
   c_bench_unit->add_option("--cell", bench.cell, "cell layout")
       ->check(CLI::IsMember({"two_cells", "homogeneous", "laminate"}));
 
+  auto* c_trace = app.add_subcommand("trace", "read a run's load-balance traces");
+  c_trace->require_subcommand(1);
+  std::string trace_dir, plot_out;
+  bool trace_json = false;
+  auto* c_trace_summary = c_trace->add_subcommand(
+      "summary", "paper Table I ratios, imbalance, micro-phase efficiency, bytes, migrations");
+  c_trace_summary->add_option("dir", trace_dir, "output folder of a run")->required();
+  c_trace_summary->add_flag("--json", trace_json, "print JSON");
+  auto* c_trace_plot = c_trace->add_subcommand(
+      "plot", "PNGs: cumulative Entire/Micro+L+C/Macro per step (paper Fig. 7), worker Gantt charts");
+  c_trace_plot->add_option("dir", trace_dir, "output folder of a run")->required();
+  c_trace_plot->add_option("--out", plot_out, "where to write the PNGs (default: the run folder)");
+
+  fe2::cli::FarmSimOptions sim;
+  auto* c_sim = app.add_subcommand(
+      "farm-sim", "replay a run's measured unit costs on W simulated workers (same scheduler "
+                  "and rebalancer) and predict efficiencies");
+  c_sim->add_option("dir", sim.dir, "output folder of a run")->required();
+  c_sim->add_option("--workers", sim.workers, "simulated worker counts (default 6144 60000 600000)");
+  c_sim->add_option("--units-per-worker", sim.units_per_worker, "units per worker (default 1 4)");
+  c_sim->add_option("--policy", sim.policy, "placement policy")
+      ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
+  c_sim->add_option("--latency", sim.latency, "seconds per message (default 2e-6)");
+  c_sim->add_option("--bandwidth", sim.bandwidth, "bytes per second (default 5e9, the paper's links)");
+  c_sim->add_option("--batch", sim.batch, "jobs per pull")->check(CLI::Range(1, 1000000));
+  c_sim->add_option("--macro-scale", sim.macro_scale, "multiply the measured Macro time");
+  c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
+
   int rc = 0;
   try {
     app.parse(argc, argv);
@@ -66,6 +96,9 @@ int main(int argc, char** argv) {
     else if (*c_validate) rc = fe2::cli::validate(validate_spec);
     else if (*c_unit) rc = fe2::cli::unit(unit);
     else if (*c_bench_unit) rc = fe2::cli::bench_unit(bench);
+    else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);
+    else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
+    else if (*c_sim) rc = fe2::cli::farm_sim(sim);
   } catch (const fe2::Error& e) {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -1,0 +1,98 @@
+// Checks on the output folders of task-farm runs, for the mpi tests:
+//   farm_check compare REF OUT TOL [MIN_MIGRATIONS]   summaries agree to TOL (0: bit for bit)
+//   farm_check imbalance DIR below|above X            imbalance after the first rebalance
+// Prints what it compared; exits 1 on a failed check, 2 on unreadable input.
+#include "coordinator/trace_analysis.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+
+using nlohmann::json;
+
+namespace {
+
+json read(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    std::cerr << "cannot open " << path << "\n";
+    std::exit(2);
+  }
+  return json::parse(in);
+}
+
+/// Largest relative difference over every number in the probes and residual histories.
+double compare(const json& a, const json& b, const std::string& where, double scale, bool& same_shape) {
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>(), y = b.get<double>();
+    return std::abs(x - y) / std::max(scale, 1e-300);
+  }
+  if (a.type() != b.type() || a.size() != b.size()) {
+    std::cerr << "shape differs at " << where << "\n";
+    same_shape = false;
+    return INFINITY;
+  }
+  double d = 0.0;
+  if (a.is_object())
+    for (auto it = a.begin(); it != a.end(); ++it)
+      if (it.key() != "wall_seconds")  // differs from run to run; not a result
+      d = std::max(d, compare(it.value(), b.at(it.key()), where + "/" + it.key(), scale, same_shape));
+  if (a.is_array())
+    for (size_t i = 0; i < a.size(); ++i)
+      d = std::max(d, compare(a[i], b[i], where + "/" + std::to_string(i), scale, same_shape));
+  return d;
+}
+
+double probe_scale(const json& s) {
+  double m = 0.0;
+  for (auto it = s["probes"].begin(); it != s["probes"].end(); ++it)
+    for (const auto& x : it.value()) m = std::max(m, std::abs(x.get<double>()));
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "compare" && argc >= 5) {
+    const json ref = read(std::string(argv[2]) + "/summary.json");
+    const json out = read(std::string(argv[3]) + "/summary.json");
+    const double tol = std::stod(argv[4]);
+    const int min_migrations = argc > 5 ? std::stoi(argv[5]) : 0;
+    bool ok = ref["converged"].get<bool>() && out["converged"].get<bool>();
+    bool shape = true;
+    const double d_probes = compare(ref["probes"], out["probes"], "probes", probe_scale(ref), shape);
+    const bool same_iterations = ref["newton_iterations"] == out["newton_iterations"];
+    const fe2::TraceSummary t = fe2::summarize(fe2::read_traces(argv[3]));
+    std::printf("probes: max relative difference %.3e (tolerance %.1e); Newton iterations %d vs %d; "
+                "migrations %d (at least %d)\n",
+                d_probes, tol, ref["newton_iterations"].get<int>(), out["newton_iterations"].get<int>(),
+                t.migrations, min_migrations);
+    if (tol == 0.0) {  // bit for bit: every number of the residual histories too
+      const double d_hist = compare(ref["history"], out["history"], "history", 1.0, shape);
+      std::printf("history (residuals, iterations): %s\n", d_hist == 0.0 ? "identical" : "differs");
+      ok = ok && d_hist == 0.0;
+    }
+    ok = ok && shape && d_probes <= tol && same_iterations && t.migrations >= min_migrations;
+    std::printf("%s\n", ok ? "PASS" : "FAIL");
+    return ok ? 0 : 1;
+  }
+  if (mode == "imbalance" && argc == 5) {
+    const fe2::TraceSummary t = fe2::summarize(fe2::read_traces(argv[2]));
+    const std::string dir = argv[3];
+    const double x = std::stod(argv[4]);
+    const double v = t.imbalance_after_first_rebalance;
+    std::printf("imbalance (max/mean worker busy) after the first rebalance: %.3f (mean %.3f, "
+                "max %.3f, migrations %d); expected %s %.2f\n",
+                v, t.imbalance_mean, t.imbalance_max, t.migrations, dir.c_str(), x);
+    const bool ok = dir == "below" ? v < x : v > x;
+    std::printf("%s\n", ok ? "PASS" : "FAIL");
+    return ok ? 0 : 1;
+  }
+  std::cerr << "usage: farm_check compare REF OUT TOL [MIN_MIGRATIONS] | imbalance DIR below|above X\n";
+  return 2;
+}

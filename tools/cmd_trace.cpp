@@ -1,0 +1,98 @@
+// `fe2heart trace summary|plot DIR` and `fe2heart farm-sim DIR`.
+#include "common/error.h"
+#include "coordinator/farm_sim.h"
+#include "coordinator/trace_analysis.h"
+#include "tools/commands.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+namespace fe2::cli {
+
+int trace_summary(const std::string& dir, bool as_json) {
+  const TraceSummary s = summarize(read_traces(dir));
+  if (as_json) {
+    fmt::print("{}\n", to_json(s).dump(2));
+    return 0;
+  }
+  fmt::print("trace of {}: {} Newton iterations, {} workers, {} units\n", dir, s.iterations,
+             s.workers, s.units);
+  fmt::print("  time (s)        Entire {:.4g}   Micro+L+C {:.4g}   Macro {:.4g}   comm1 {:.3g}   comm2 {:.3g}\n",
+             s.entire, s.micro_lc, s.macro, s.comm1, s.comm2);
+  fmt::print("  Table I         Micro+L+C/Entire {:.3f}   Macro/Entire {:.4f}\n", s.micro_over_entire,
+             s.macro_over_entire);
+  fmt::print("  imbalance       max/mean worker busy: mean {:.3f}, max {:.3f}, last {:.3f}, "
+             "after first rebalance {:.3f}\n",
+             s.imbalance_mean, s.imbalance_max, s.imbalance_last, s.imbalance_after_first_rebalance);
+  fmt::print("  micro phase     efficiency {:.3f} (Σ worker busy / (workers × Micro+L+C))\n",
+             s.micro_efficiency);
+  fmt::print("  communication   {:.0f} bytes per unit-iteration (paper: about 2 KB); comm1+comm2 = "
+             "{:.2f} % of Micro+L+C\n",
+             s.bytes_per_unit_iteration, s.micro_lc > 0 ? 100 * (s.comm1 + s.comm2) / s.micro_lc : 0.0);
+  fmt::print("  migrations      {}{}\n", s.migrations,
+             s.first_rebalance_iteration >= 0
+                 ? fmt::format(" (first at iteration {} of the trace)", s.first_rebalance_iteration + 1)
+                 : "");
+  return 0;
+}
+
+int trace_plot(const std::string& dir, const std::string& out) {
+  read_traces(dir);  // clear error if the folder has no traces
+  const std::string script = FE2_TRACE_PLOT_SCRIPT;
+  if (!std::filesystem::exists(script))
+    throw InputError(fmt::format("trace plot: script '{}' not found (run from a source build)", script));
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}'{}", script, dir,
+                                      out.empty() ? "" : fmt::format(" --out '{}'", out));
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0)
+    throw Error(fmt::format("trace plot: '{}' failed (status {}); it needs Debian's "
+                            "python3-matplotlib (apt-get install -y python3-matplotlib)",
+                            cmd, rc));
+  return 0;
+}
+
+int farm_sim(const FarmSimOptions& o) {
+  const TraceData t = read_traces(o.dir);
+  const FarmSimInput in = farm_sim_input(t);
+  const long long measured = static_cast<long long>(in.state_bytes.size());
+  FarmOptions f;
+  f.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
+             : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
+                                        : FarmOptions::Policy::cost_based;
+  f.latency = o.latency;
+  f.bandwidth = o.bandwidth;
+  f.batch = o.batch;
+  std::vector<int> worker_counts = o.workers;
+  if (worker_counts.empty()) worker_counts = {6144, 60000, 600000};
+  fmt::print("farm-sim of {}: {} measured units, {} Newton iterations replayed; network "
+             "latency {:.1e} s, bandwidth {:.2g} B/s, batch {}; policy {}; macro time as "
+             "measured × {}\n",
+             o.dir, measured, in.macro.size(), f.latency, f.bandwidth, f.batch, o.policy,
+             o.macro_scale);
+  fmt::print("efficiency 'vs W/4': the paper's strong scaling (same units on W/4 workers as the "
+             "base, e.g. 1536 -> 6144);\n'vs balance': Σ work / W over the predicted time.\n\n");
+  fmt::print("{:>8} {:>6} {:>10} | {:>12} {:>12} | {:>9} {:>9} | {:>9} {:>9} | {:>6}\n", "workers",
+             "u/w", "units", "Micro+L+C s", "Entire s", "micro/W4", "entire/W4", "micro/bal",
+             "ent./bal", "moves");
+  for (int W : worker_counts)
+    for (int k : o.units_per_worker) {
+      const long long U = static_cast<long long>(W) * k;
+      if (U > o.max_units) continue;
+      const FarmSimResult r = simulate_farm(in, W, U, f, o.macro_scale);
+      const int base = std::max(1, W / 4);
+      const FarmSimResult b = simulate_farm(in, base, U, f, o.macro_scale);
+      const double micro_rel = (b.micro * base) / (r.micro * W);
+      const double entire_rel = (b.entire * base) / (r.entire * W);
+      const double macro_total = r.entire - r.micro;
+      fmt::print("{:>8} {:>6} {:>10} | {:>12.4g} {:>12.4g} | {:>9.3f} {:>9.3f} | {:>9.3f} {:>9.3f} | {:>6}\n",
+                 W, k, U, r.micro, r.entire, micro_rel, entire_rel, (r.work / W) / r.micro,
+                 (r.work / W + macro_total) / r.entire, r.migrations);
+    }
+  fmt::print("\npaper (T2K, 6144 cores, one unit each, vs 1536): entire 0.893, micro+L+C 0.918\n");
+  return 0;
+}
+
+}  // namespace fe2::cli
