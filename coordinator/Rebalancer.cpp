@@ -51,12 +51,96 @@ double transfer_seconds(double bytes, const FarmOptions& o) {
   return o.latency + bytes / o.bandwidth;
 }
 
+std::vector<double> predicted_loads(const std::vector<UnitCost>& cost,
+                                    const std::vector<int>& from, const std::vector<int>& to,
+                                    int workers, const FarmOptions& o) {
+  std::vector<double> load(workers, 0.0);
+  for (size_t u = 0; u < cost.size(); ++u) {
+    load[to[u]] += cost[u].next;
+    if (to[u] != from[u]) {
+      const double t = transfer_seconds(cost[u].state_bytes, o);
+      load[from[u]] += t;
+      load[to[u]] += t + cost[u].rebuild;
+    }
+  }
+  return load;
+}
+
+namespace {
+
+/// Longest processing time first, sticky: units by decreasing cost, each to whichever
+/// is cheaper of its current worker and the least loaded one (moving pays transfer
+/// and rebuild). O(U log W).
+std::vector<int> sticky_lpt(const std::vector<UnitCost>& cost, const std::vector<int>& current,
+                            int workers, const FarmOptions& o) {
+  std::vector<int> order(cost.size());
+  for (size_t u = 0; u < order.size(); ++u) order[u] = static_cast<int>(u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return cost[a].next > cost[b].next; });
+  std::vector<double> load(workers, 0.0);
+  std::set<std::pair<double, int>> by_load;
+  for (int w = 0; w < workers; ++w) by_load.emplace(0.0, w);
+  std::vector<int> to(cost.size());
+  for (int u : order) {
+    const int stay = current[u];
+    const int lo = by_load.begin()->second;
+    const double move_extra = transfer_seconds(cost[u].state_bytes, o) + cost[u].rebuild;
+    const int w = load[lo] + move_extra < load[stay] ? lo : stay;
+    by_load.erase({load[w], w});
+    load[w] += cost[u].next + (w != stay ? move_extra : 0.0);
+    by_load.emplace(load[w], w);
+    to[u] = w;
+  }
+  return to;
+}
+
+/// Local search from the current placement: moves and swaps between the most and the
+/// least loaded workers (see the header).
+std::vector<int> local_search(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
+                              int workers, const FarmOptions& o);
+
+}  // namespace
+
 Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
                     int workers, const FarmOptions& o) {
   Plan plan;
   plan.worker_of_unit = worker_of_unit;
+  const auto before = worker_loads(cost, worker_of_unit, workers);
+  plan.makespan_before = *std::max_element(before.begin(), before.end());
+  plan.makespan_after = plan.makespan_before;
+  auto makespan = [&](const std::vector<int>& to) {
+    const auto l = predicted_loads(cost, worker_of_unit, to, workers, o);
+    return *std::max_element(l.begin(), l.end());
+  };
+  auto moves = [&](const std::vector<int>& to) {
+    int n = 0;
+    for (size_t u = 0; u < to.size(); ++u) n += to[u] != worker_of_unit[u];
+    return n;
+  };
+  // Two candidates: few moves from where units are, or a fresh sticky LPT; the lower
+  // predicted makespan wins (fewer moves on a tie).
+  const std::vector<int> a = local_search(cost, worker_of_unit, workers, o);
+  const std::vector<int> b = sticky_lpt(cost, worker_of_unit, workers, o);
+  const double ma = makespan(a), mb = makespan(b);
+  const std::vector<int>& best = (mb < ma || (mb == ma && moves(b) < moves(a))) ? b : a;
+  const double after = std::min(ma, mb);
+  if (after > (1.0 - o.min_gain) * plan.makespan_before) return plan;  // not worth the moves
+  plan.worker_of_unit = best;
+  plan.makespan_after = after;
+  for (size_t u = 0; u < cost.size(); ++u)
+    if (best[u] != worker_of_unit[u]) plan.moves.emplace_back(static_cast<int>(u), best[u]);
+  return plan;
+}
+
+namespace {
+
+std::vector<int> local_search(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
+                              int workers, const FarmOptions& o) {
+  struct {
+    std::vector<int> worker_of_unit;
+  } plan;
+  plan.worker_of_unit = worker_of_unit;
   std::vector<double> load = worker_loads(cost, worker_of_unit, workers);
-  plan.makespan_before = *std::max_element(load.begin(), load.end());
   std::vector<std::vector<int>> held(workers);
   for (size_t u = 0; u < cost.size(); ++u) held[worker_of_unit[u]].push_back(static_cast<int>(u));
   std::set<std::pair<double, int>> by_load;  // (load, worker): O(log W) max and min
@@ -110,16 +194,9 @@ Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& w
     set_load(hi, new_hi);
     set_load(lo, new_lo);
   }
-  plan.makespan_after = *std::max_element(load.begin(), load.end());
-  if (plan.makespan_after > (1.0 - o.min_gain) * plan.makespan_before) {
-    plan.worker_of_unit = worker_of_unit;  // not worth the moves
-    plan.makespan_after = plan.makespan_before;
-    return plan;
-  }
-  for (size_t u = 0; u < cost.size(); ++u)
-    if (plan.worker_of_unit[u] != worker_of_unit[u])
-      plan.moves.emplace_back(static_cast<int>(u), plan.worker_of_unit[u]);
-  return plan;
+  return plan.worker_of_unit;
 }
+
+}  // namespace
 
 }  // namespace fe2

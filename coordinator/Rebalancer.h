@@ -8,11 +8,14 @@
 // factor anyway, one factorization at the destination to rebuild it: this is how the
 // plan prefers migrating at factor-refresh boundaries.
 //
-// Plan: starting from the current placement, repeatedly take the most and the least
-// loaded workers and apply the single move (hi -> lo) or swap (hi <-> lo) that lowers
-// the larger of their two loads the most, each unit moving at most once per plan,
-// until nothing helps; keep the plan only if the predicted makespan drops by at least
-// min_gain. Deterministic (ties go to the lowest unit id).
+// Plan: two candidates, the better predicted makespan wins (fewer moves on a tie):
+//  - local search from the current placement: repeatedly take the most and the least
+//    loaded workers and apply the single move (hi -> lo) or swap (hi <-> lo) that
+//    lowers the larger of their two loads the most, each unit moving at most once;
+//  - sticky LPT: units by decreasing cost, each to the cheaper of its current worker
+//    and the least loaded one (moving pays transfer and rebuild).
+// The plan is kept only if the predicted makespan drops by at least min_gain.
+// Deterministic (ties go to the lowest unit id / worker index).
 #include "coordinator/FarmOptions.h"
 
 #include <cstdint>
@@ -74,6 +77,10 @@ std::vector<double> worker_loads(const std::vector<UnitCost>& cost, const std::v
 
 /// Seconds to move `bytes` between two ranks under the network model.
 double transfer_seconds(double bytes, const FarmOptions& o);
+
+/// Loads after moving every unit from `from` to `to` (migrations included).
+std::vector<double> predicted_loads(const std::vector<UnitCost>& cost, const std::vector<int>& from,
+                                    const std::vector<int>& to, int workers, const FarmOptions& o);
 
 /// Cost-based plan from the current placement.
 Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& worker_of_unit,
