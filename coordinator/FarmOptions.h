@@ -11,6 +11,7 @@ struct FarmOptions {
   enum class When { iteration, step } rebalance_at = When::iteration;
   int batch = 2;                    ///< jobs per pull
   double min_gain = 0.03;           ///< rebalance only if the predicted makespan drops this much
+  double tolerated_imbalance = 0.05;///< ... and only if max/mean predicted load exceeds 1 + this
   double latency = 2e-6;            ///< network model: seconds per message
   double bandwidth = 5e9;           ///< network model: bytes per second (paper: 5 GB/s links)
 };

@@ -108,6 +108,9 @@ Plan plan_rebalance(const std::vector<UnitCost>& cost, const std::vector<int>& w
   const auto before = worker_loads(cost, worker_of_unit, workers);
   plan.makespan_before = *std::max_element(before.begin(), before.end());
   plan.makespan_after = plan.makespan_before;
+  double total = 0.0;
+  for (double l : before) total += l;
+  if (plan.makespan_before <= (1.0 + o.tolerated_imbalance) * total / workers) return plan;
   auto makespan = [&](const std::vector<int>& to) {
     const auto l = predicted_loads(cost, worker_of_unit, to, workers, o);
     return *std::max_element(l.begin(), l.end());

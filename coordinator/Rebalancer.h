@@ -14,7 +14,9 @@
 //    lowers the larger of their two loads the most, each unit moving at most once;
 //  - sticky LPT: units by decreasing cost, each to the cheaper of its current worker
 //    and the least loaded one (moving pays transfer and rebuild).
-// The plan is kept only if the predicted makespan drops by at least min_gain.
+// Nothing moves while the predicted max/mean load is within 1 + tolerated_imbalance
+// (measured costs are noisy; chasing noise only migrates), and a plan is kept only if
+// the predicted makespan drops by at least min_gain.
 // Deterministic (ties go to the lowest unit id / worker index).
 #include "coordinator/FarmOptions.h"
 

@@ -284,6 +284,8 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   fo.batch = farm.integer("batch", 2, Range::closed(1, 1e6), "jobs a worker pulls at once");
   fo.min_gain = farm.number("min_gain", 0.03, Range::closed(0.0, 1.0),
                             "least relative makespan gain worth a migration");
+  fo.tolerated_imbalance = farm.number("tolerated_imbalance", 0.05, Range::closed(0.0, 10.0),
+                                       "no rebalance while predicted max/mean load <= 1 + this");
   fo.latency = farm.number("latency", 2e-6, Range::non_negative(),
                            "network model: seconds per message");
   fo.bandwidth = farm.number("bandwidth", 5e9, Range::positive(),

@@ -30,6 +30,7 @@ FarmOptions free_network(FarmOptions::Policy p) {
   o.latency = 0.0;
   o.bandwidth = std::numeric_limits<double>::infinity();
   o.min_gain = 0.0;
+  o.tolerated_imbalance = 0.0;
   return o;
 }
 
