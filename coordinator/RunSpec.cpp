@@ -1,5 +1,6 @@
 #include "coordinator/RunSpec.h"
 
+#include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/box_mesh.h"
 #include "common/mesh/gmsh_reader.h"
@@ -298,9 +299,9 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   out.finish();
   root.finish();
   const std::string canonical = j.dump();
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (unsigned char c : canonical) h = (h ^ c) * 1099511628211ull;
-  spec.hash = h;
+  Fnv1a hash;
+  hash.add(canonical.data(), canonical.size());
+  spec.hash = hash.value();
   return spec;
 }
 

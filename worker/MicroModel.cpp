@@ -1,6 +1,7 @@
 #include "worker/MicroModel.h"
 
 #include "common/error.h"
+#include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/gmsh_reader.h"
 #include "worker/micro_cell.h"
@@ -163,11 +164,8 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
       }
 
   // Fingerprint: sizes, regions and options (cheap FNV-1a over the defining data).
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* p, size_t len) {
-    const auto* b = static_cast<const unsigned char*>(p);
-    for (size_t i = 0; i < len; ++i) h = (h ^ b[i]) * 1099511628211ull;
-  };
+  Fnv1a hash;
+  auto mix = [&hash](const void* p, size_t len) { hash.add(p, len); };
   mix(&n, sizeof n);
   mix(mesh_.region.data(), mesh_.region.size() * sizeof(int));
   for (const auto& X : mesh_.nodes) mix(X.data(), 3 * sizeof(double));
@@ -177,7 +175,7 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
     const double s = m->stiffness_scale();
     mix(&s, sizeof s);
   }
-  fingerprint_ = h;
+  fingerprint_ = hash.value();
 }
 
 FactorKind MicroModel::initial_factor_kind() const {
