@@ -9,10 +9,10 @@
 
 namespace fe2::cli {
 
-UnitSpec read_unit_spec(const json& j, const std::string& file) {
+UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc) {
   UnitSpec u;
   std::string base = std::filesystem::path(file).parent_path().string();
-  SpecNode root(j, "");
+  SpecNode root(j, "", doc);
   root.string("title", "", "what this unit exploration shows");
   root.string("description", "", "longer notes");
   u.model = MicroModel::from_spec(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);

@@ -28,6 +28,9 @@ struct BenchOptions {
 };
 int bench_unit(const BenchOptions& o);
 
+/// Every key the given specs declare: type, default or "required", range, help.
+int spec_doc(const std::vector<std::string>& specs);
+
 int trace_summary(const std::string& dir, bool as_json);
 int trace_plot(const std::string& dir, const std::string& out);
 

@@ -16,6 +16,7 @@ struct UnitSpec {
   int max_iterations = 30;
 };
 
-UnitSpec read_unit_spec(const json& j, const std::string& file);
+/// `doc`, if given, collects the key declarations (spec-doc).
+UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
 
 }  // namespace fe2::cli
