@@ -11,7 +11,8 @@ using Mat3 = Eigen::Matrix3d;
 using Vec9 = Eigen::Matrix<double, 9, 1>;
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 
-constexpr int voigt9(int i, int J) { return i + 3 * J; }
+/// Position of component (i, J) in a column-major 9-vector.
+constexpr int index9(int i, int J) { return i + 3 * J; }
 
 inline Mat3 as_mat3(const Vec9& v) { return Eigen::Map<const Mat3>(v.data()); }
 inline Vec9 as_vec9(const Mat3& m) { return Eigen::Map<const Vec9>(m.data()); }

@@ -114,7 +114,7 @@ void VtuFields::add_tensor(const std::string& name, const std::vector<Vec9>& val
   f.values.reserve(9 * values.size());
   for (const Vec9& v : values)
     for (int i = 0; i < 3; ++i)
-      for (int J = 0; J < 3; ++J) f.values.push_back(v[voigt9(i, J)]);  // row-major for VTK
+      for (int J = 0; J < 3; ++J) f.values.push_back(v[index9(i, J)]);  // row-major for VTK
   add(std::move(f));
 }
 

@@ -41,7 +41,7 @@ void NeoHookean::stress_and_tangent(const Vec9& Z, Vec9& Pi, Mat9& A) const {
   for (int L = 0; L < 3; ++L)
     for (int k = 0; k < 3; ++k)
       for (int J = 0; J < 3; ++J)
-        A.block<3, 1>(3 * J, voigt9(k, L)) += (c * H(k, J)) * H.col(L);
+        A.block<3, 1>(3 * J, index9(k, L)) += (c * H(k, J)) * H.col(L);
   // μ δ_ik δ_JL.
   A.diagonal().array() += mu;
 }

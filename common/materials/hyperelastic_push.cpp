@@ -11,19 +11,19 @@ void push_forward(const Mat3& F, const Mat3& S, const Mat6& CC, Vec9& Pi, Mat9& 
   for (int b = 0; b < 6; ++b)
     for (int J = 0; J < 3; ++J)
       for (int i = 0; i < 3; ++i)
-        T(voigt9(i, J), b) = F(i, 0) * CC(voigt6(0, J), b) + F(i, 1) * CC(voigt6(1, J), b) +
+        T(index9(i, J), b) = F(i, 0) * CC(voigt6(0, J), b) + F(i, 1) * CC(voigt6(1, J), b) +
                              F(i, 2) * CC(voigt6(2, J), b);
 
   // Stage 2: 𝔸_{iJ,kL} = F_kK T_{iJ,KL}, one 9-column of 𝔸 at a time.
   for (int L = 0; L < 3; ++L)
     for (int k = 0; k < 3; ++k)
-      A.col(voigt9(k, L)) = F(k, 0) * T.col(voigt6(0, L)) + F(k, 1) * T.col(voigt6(1, L)) +
+      A.col(index9(k, L)) = F(k, 0) * T.col(voigt6(0, L)) + F(k, 1) * T.col(voigt6(1, L)) +
                             F(k, 2) * T.col(voigt6(2, L));
 
   // Geometric (initial-stress) part δ_ik S_JL.
   for (int L = 0; L < 3; ++L)
     for (int J = 0; J < 3; ++J)
-      for (int i = 0; i < 3; ++i) A(voigt9(i, J), voigt9(i, L)) += S(J, L);
+      for (int i = 0; i < 3; ++i) A(index9(i, J), index9(i, L)) += S(J, L);
 }
 
 }  // namespace fe2

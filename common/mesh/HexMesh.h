@@ -1,7 +1,7 @@
 #pragma once
-// A micro-unit mesh: 8-node hexahedra (VTK/Gmsh node order: bottom face
-// counter-clockwise seen from +z... i.e. 0:(-,-,-) 1:(+,-,-) 2:(+,+,-) 3:(-,+,-),
-// then 4..7 the same on the top face) with one material region per element.
+// A micro-unit mesh: 8-node hexahedra with one material region per element. Node
+// order as VTK and Gmsh: 0:(-,-,-) 1:(+,-,-) 2:(+,+,-) 3:(-,+,-) (the bottom face,
+// counter-clockwise seen from +z), then 4..7 the same on the top face.
 #include "common/tensor9.h"
 
 #include <array>

@@ -29,7 +29,7 @@ double tet_signed_volume(const TetMesh& m, int e);
 
 /// Checks every tet has positive volume (throws fe2::InputError naming the element,
 /// its nodes and the volume, and `source` (file name or generator) otherwise), that
-/// node indices are in range, and rebuilds node sets for every named face.
+/// node indices are in range, and adds a node set for each named face that has none.
 void validate_mesh(TetMesh& m, const std::string& source);
 
 /// Orients every named face triangle outward from the tet it bounds; throws

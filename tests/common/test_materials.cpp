@@ -63,7 +63,7 @@ Mat9 isotropic_linear_tangent(double lambda, double mu) {
     for (int J = 0; J < 3; ++J)
       for (int k = 0; k < 3; ++k)
         for (int L = 0; L < 3; ++L)
-          A(voigt9(i, J), voigt9(k, L)) =
+          A(index9(i, J), index9(k, L)) =
               lambda * d(i, J) * d(k, L) + mu * (d(i, k) * d(J, L) + d(i, L) * d(J, k));
   return A;
 }
@@ -142,7 +142,7 @@ TEST_P(MaterialLaw, ReferenceStateIsStressFreeAndEnergyFree) {
 
 TEST_P(MaterialLaw, InvertedPointThrowsNumericalError) {
   Vec9 reflected = Vec9::Zero();
-  reflected(voigt9(0, 0)) = -2.0;  // F = diag(−1, 1, 1), det F = −1
+  reflected(index9(0, 0)) = -2.0;  // F = diag(−1, 1, 1), det F = −1
   const Vec9 collapsed = -as_vec9(Mat3::Identity());  // F = 0
   Vec9 not_a_number = Vec9::Zero();
   not_a_number(3) = std::numeric_limits<double>::quiet_NaN();
@@ -200,15 +200,15 @@ TEST(MaterialGuccione, IsAnisotropicAlongTheFibre) {
   // Equal stretch along fibre and sheet: the fibre (b_f > b_t) carries more stress.
   const Guccione law(GuccioneParameters{});
   Vec9 Z_fibre = Vec9::Zero(), Z_sheet = Vec9::Zero();
-  Z_fibre(voigt9(0, 0)) = 0.1;
-  Z_sheet(voigt9(1, 1)) = 0.1;
-  EXPECT_GT(law.stress(Z_fibre)(voigt9(0, 0)), law.stress(Z_sheet)(voigt9(1, 1)));
+  Z_fibre(index9(0, 0)) = 0.1;
+  Z_sheet(index9(1, 1)) = 0.1;
+  EXPECT_GT(law.stress(Z_fibre)(index9(0, 0)), law.stress(Z_sheet)(index9(1, 1)));
 }
 
 TEST(MaterialGuccione, OverflowingStrainThrowsNumericalError) {
   const Guccione law(GuccioneParameters{});
   Vec9 Z = Vec9::Zero();
-  Z(voigt9(0, 0)) = 10.0;  // E11 = 60, Q ≈ 6.7e4: e^Q overflows
+  Z(index9(0, 0)) = 10.0;  // E11 = 60, Q ≈ 6.7e4: e^Q overflows
   Vec9 Pi;
   Mat9 A;
   EXPECT_THROW(law.energy(Z), NumericalError);
