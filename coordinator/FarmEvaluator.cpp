@@ -124,13 +124,17 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   // this rank's own units are done.
   auto client_done = [&] { return !client_ || client_->finished(); };
   while (!(server_.finished() && client_done())) {
-    const bool server_idle = server_.finished() || !server_.poll(false);
+    const long long before = server_.served() + (client_ ? client_->progress() : 0);
+    if (!server_.finished()) server_.poll(false);
     if (!client_done()) client_->poll(false);
-    if (server_.finished() && !client_done()) {
+    if (server_.served() + (client_ ? client_->progress() : 0) != before) continue;
+    // Nothing happened: block on whichever side is left, or nap briefly when both
+    // wait for messages (MPI cannot probe two tags at once).
+    if (server_.finished()) {
       client_->poll(true);
-    } else if (!server_.finished() && client_done()) {
+    } else if (client_done()) {
       server_.poll(true);
-    } else if (server_idle && !client_done()) {
+    } else {
       std::this_thread::sleep_for(std::chrono::microseconds(20));
     }
   }

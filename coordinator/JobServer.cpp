@@ -28,6 +28,7 @@ bool JobServer::poll(bool block) {
     t0 = wall_seconds();  // waiting is not communication cost
   }
   const proto::Pull pull = proto::Pull::unpack(in);
+  ++served_;
   auto q = queues_.find(from);
   FE2_CHECK(q != queues_.end() && !q->second.done, "pull from rank {} which has no jobs here", from);
   for (const auto& r : pull.results) {

@@ -22,6 +22,8 @@ class JobServer {
   /// jobs here has been told "done" (so every result is in).
   bool poll(bool block);
   bool finished() const { return open_ == 0; }
+  /// Pulls served so far (tells a polling loop whether anything happened).
+  long long served() const { return served_; }
   /// Results in job order.
   const std::vector<proto::JobOutput>& results() const { return results_; }
   double comm1_seconds() const { return comm1_; }  ///< packing and posting job batches
@@ -38,6 +40,7 @@ class JobServer {
   std::unordered_map<int, int> job_of_unit_;
   std::map<int, Queue> queues_;
   int open_ = 0;
+  long long served_ = 0;
   double comm1_ = 0.0, comm2_ = 0.0;
 };
 

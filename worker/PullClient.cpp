@@ -51,6 +51,7 @@ bool PullClient::poll(bool block) {
       p.pack(b);
       transport_.send(s.rank, proto::Type::pull, std::move(b));
       s.outstanding = true;
+      ++progress_;
     }
   // Run one job, if any is queued.
   for (Source& s : sources_)
@@ -61,6 +62,7 @@ bool PullClient::poll(bool block) {
       stats_.busy_cpu += thread_cpu_seconds() - c0;
       stats_.busy_wall += wall_seconds() - w0;
       ++stats_.jobs;
+      ++progress_;
       return false;
     }
   // Nothing to run: take a batch that has arrived (or wait for one).
@@ -74,6 +76,7 @@ bool PullClient::poll(bool block) {
   }
   stats_.wait_wall += wall_seconds() - w0;
   if (!got) return false;
+  ++progress_;
   const proto::Batch batch = proto::Batch::unpack(b);
   auto it = std::find_if(sources_.begin(), sources_.end(), [&](const Source& s) { return s.rank == from; });
   FE2_CHECK(it != sources_.end() && it->outstanding, "unexpected batch from rank {}", from);

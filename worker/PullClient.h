@@ -22,6 +22,9 @@ class PullClient {
   /// nothing else to do. Returns true once every coordinator is done.
   bool poll(bool block);
   bool finished() const;
+  /// Jobs run, batches taken and pulls sent so far (tells a polling loop whether
+  /// anything happened).
+  long long progress() const { return progress_; }
   /// This iteration's account (valid after finished()).
   proto::WorkerStats stats() const;
   void count_migrations(int in, int out) { migrations_in_ += in, migrations_out_ += out; }
@@ -41,6 +44,7 @@ class PullClient {
   std::vector<Source> sources_;
   proto::WorkerStats stats_;
   int migrations_in_ = 0, migrations_out_ = 0;
+  long long progress_ = 0;
   int64_t sent0_ = 0, received0_ = 0;
 };
 
