@@ -9,7 +9,7 @@ struct FarmOptions {
   bool coordinators_work = true;    ///< coordinator ranks also hold units (paper ranks 0–63)
   enum class Policy { round_robin, contiguous, cost_based } policy = Policy::cost_based;
   enum class When { iteration, step } rebalance_at = When::iteration;
-  int batch = 2;                    ///< jobs per pull
+  int batch = 4;                    ///< jobs per pull
   double min_gain = 0.03;           ///< rebalance only if the predicted makespan drops this much
   double tolerated_imbalance = 0.05;///< ... and only if max/mean predicted load exceeds 1 + this
   double latency = 2e-6;            ///< network model: seconds per message

@@ -11,7 +11,9 @@ void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vecto
   queues_.clear();
   for (size_t k = 0; k < jobs.size(); ++k) {
     job_of_unit_[jobs[k].unit] = static_cast<int>(k);
-    queues_[worker_of_job[k]].jobs.push_back(static_cast<int>(k));
+    Queue& q = queues_[worker_of_job[k]];
+    q.jobs.push_back(static_cast<int>(k));
+    ++q.assigned;
   }
   open_ = static_cast<int>(queues_.size());
   comm1_ = comm2_ = 0.0;
@@ -35,6 +37,7 @@ bool JobServer::poll(bool block) {
     auto it = job_of_unit_.find(r.unit);
     FE2_CHECK(it != job_of_unit_.end(), "result for unit {} which is not in this queue", r.unit);
     results_[it->second] = r;
+    ++q->second.received;
   }
   const double t1 = wall_seconds();
   comm2_ += t1 - t0;
@@ -45,7 +48,7 @@ bool JobServer::poll(bool block) {
     batch.jobs.push_back(jobs_[queue.jobs.front()]);
     queue.jobs.pop_front();
   }
-  if (batch.jobs.empty()) {
+  if (batch.jobs.empty() && queue.received == queue.assigned) {
     batch.done = true;
     queue.done = true;
     --open_;

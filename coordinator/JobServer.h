@@ -1,8 +1,9 @@
 #pragma once
 // A coordinator's job queue for one Newton iteration: the jobs of its own units, one
 // queue per worker rank (a unit runs where its state lives). Each Pull from a worker
-// brings the results of its last batch and asks for the next; the reply is up to
-// `max_jobs` more, or "done" once that worker's queue is empty.
+// brings the results it has and asks for more (workers ask ahead, before their queue
+// runs dry); the reply is up to `max_jobs` more, an empty batch once the queue is
+// drained but results are still out, or "done" once every result is in.
 #include "proto/Transport.h"
 
 #include <deque>
@@ -32,6 +33,8 @@ class JobServer {
  private:
   struct Queue {
     std::deque<int> jobs;  ///< indices into jobs_
+    int assigned = 0;      ///< jobs of this worker in this iteration
+    int received = 0;      ///< results back so far
     bool done = false;
   };
   proto::Transport& transport_;

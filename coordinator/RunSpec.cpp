@@ -282,7 +282,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
                                 "when the cost-based policy may migrate units") == "iteration"
                         ? FarmOptions::When::iteration
                         : FarmOptions::When::step;
-  fo.batch = farm.integer("batch", 2, Range::closed(1, 1e6), "jobs a worker pulls at once");
+  fo.batch = farm.integer("batch", 4, Range::closed(1, 1e6), "jobs a worker pulls at once");
   fo.min_gain = farm.number("min_gain", 0.03, Range::closed(0.0, 1.0),
                             "least relative makespan gain worth a migration");
   fo.tolerated_imbalance = farm.number("tolerated_imbalance", 0.05, Range::closed(0.0, 10.0),

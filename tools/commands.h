@@ -41,7 +41,7 @@ struct FarmSimOptions {
   std::string policy = "cost_based";
   double latency = 2e-6;
   double bandwidth = 5e9;
-  int batch = 2;
+  int batch = 4;
   double macro_scale = 1.0;
   long long max_units = 3000000;
 };

@@ -39,9 +39,12 @@ bool PullClient::finished() const {
 
 bool PullClient::poll(bool block) {
   if (finished()) return true;
-  // Ask every coordinator whose queue here ran dry (with the results so far).
+  // Ask ahead (with the results so far): while half a batch is still queued, or, once
+  // the coordinator has no more jobs, with the last results when the queue is empty.
+  const size_t ahead = static_cast<size_t>(batch_ / 2);
   for (Source& s : sources_)
-    if (!s.done && !s.outstanding && s.queue.empty()) {
+    if (!s.done && !s.outstanding &&
+        (s.exhausted ? s.queue.empty() : s.queue.size() <= ahead)) {
       proto::Pull p;
       p.worker = transport_.rank();
       p.max_jobs = batch_;
@@ -82,6 +85,7 @@ bool PullClient::poll(bool block) {
   FE2_CHECK(it != sources_.end() && it->outstanding, "unexpected batch from rank {}", from);
   it->outstanding = false;
   it->done = batch.done;
+  it->exhausted = batch.jobs.empty();
   for (const auto& j : batch.jobs) it->queue.push_back(j);
   if (finished()) close_stats();
   return finished();

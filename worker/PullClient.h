@@ -1,8 +1,10 @@
 #pragma once
 // The worker side of one Newton iteration (paper Fig. 5 (a)–(f), DESIGN §3): pull
 // batches of jobs for the units living here from each coordinator that owns some of
-// them, run them, and send each batch's results back with the next pull, until every
-// coordinator says it is done. Non-blocking steps, so a rank that also coordinates
+// them, run them, and send results back with the next pull, until every coordinator
+// says it is done. A pull goes out while half a batch is still queued, so the next
+// batch arrives while this rank computes (a coordinator that also works answers only
+// between its own jobs). Non-blocking steps, so a rank that also coordinates
 // can serve its own queue in between.
 #include "proto/Transport.h"
 #include "worker/UnitStore.h"
@@ -34,6 +36,7 @@ class PullClient {
   struct Source {
     int rank;
     bool outstanding = false;
+    bool exhausted = false;  ///< the coordinator has no more jobs; results still to send
     bool done = false;
     std::deque<proto::JobInput> queue;
     std::vector<proto::JobOutput> results;
