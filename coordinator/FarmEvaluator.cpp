@@ -117,7 +117,7 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   const double t_start = wall_seconds();
   std::vector<int> worker_of_job(jobs.size());
   for (size_t k = 0; k < jobs.size(); ++k) worker_of_job[k] = placement_[jobs[k].unit];
-  server_.begin(jobs, worker_of_job);
+  server_.begin(jobs, worker_of_job, spec_.farm.batch);
   if (client_) client_->begin(coordinators_of(*store_, layout_.coordinator_of_unit), step, iteration);
 
   // (b)–(f) serve pulls and work, until all of this coordinator's results are in and

@@ -4,7 +4,8 @@
 
 namespace fe2 {
 
-void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job) {
+void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job,
+                      int first_batch) {
   jobs_ = jobs;
   results_.assign(jobs.size(), proto::JobOutput{});
   job_of_unit_.clear();
@@ -17,6 +18,25 @@ void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vecto
   }
   open_ = static_cast<int>(queues_.size());
   comm1_ = comm2_ = 0.0;
+  const double t0 = wall_seconds();
+  for (auto& [worker, queue] : queues_) send_batch(worker, queue, first_batch);
+  comm1_ += wall_seconds() - t0;
+}
+
+void JobServer::send_batch(int worker, Queue& queue, int n) {
+  proto::Batch batch;
+  while (!queue.jobs.empty() && static_cast<int>(batch.jobs.size()) < n) {
+    batch.jobs.push_back(jobs_[queue.jobs.front()]);
+    queue.jobs.pop_front();
+  }
+  if (batch.jobs.empty() && queue.received == queue.assigned) {
+    batch.done = true;
+    queue.done = true;
+    --open_;
+  }
+  Bytes out;
+  batch.pack(out);
+  transport_.send(worker, proto::Type::batch, std::move(out));
 }
 
 bool JobServer::poll(bool block) {
@@ -42,20 +62,7 @@ bool JobServer::poll(bool block) {
   const double t1 = wall_seconds();
   comm2_ += t1 - t0;
 
-  proto::Batch batch;
-  Queue& queue = q->second;
-  while (!queue.jobs.empty() && static_cast<int>(batch.jobs.size()) < pull.max_jobs) {
-    batch.jobs.push_back(jobs_[queue.jobs.front()]);
-    queue.jobs.pop_front();
-  }
-  if (batch.jobs.empty() && queue.received == queue.assigned) {
-    batch.done = true;
-    queue.done = true;
-    --open_;
-  }
-  Bytes out;
-  batch.pack(out);
-  transport_.send(from, proto::Type::batch, std::move(out));
+  send_batch(from, q->second, pull.max_jobs);
   comm1_ += wall_seconds() - t1;
   return finished();
 }

@@ -17,8 +17,10 @@ class JobServer {
  public:
   explicit JobServer(proto::Transport& transport) : transport_(transport) {}
 
-  /// `worker_of_job[k]`: world rank holding jobs[k].unit.
-  void begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job);
+  /// `worker_of_job[k]`: world rank holding jobs[k].unit. Sends every worker its first
+  /// batch of up to `first_batch` jobs unasked, so no worker waits for a first reply.
+  void begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job,
+             int first_batch);
   /// Serves one waiting Pull (or waits for one if `block`). True once every worker with
   /// jobs here has been told "done" (so every result is in).
   bool poll(bool block);
@@ -37,6 +39,8 @@ class JobServer {
     int received = 0;      ///< results back so far
     bool done = false;
   };
+  /// Sends `worker` up to `n` more jobs, or an empty / done batch.
+  void send_batch(int worker, Queue& queue, int n);
   proto::Transport& transport_;
   std::vector<proto::JobInput> jobs_;
   std::vector<proto::JobOutput> results_;

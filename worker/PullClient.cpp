@@ -12,7 +12,11 @@ PullClient::PullClient(proto::Transport& transport, UnitStore& store, int batch)
 
 void PullClient::begin(const std::vector<int>& coordinators, int step, int iteration) {
   sources_.clear();
-  for (int c : coordinators) sources_.push_back(Source{c});
+  // Every coordinator sends its first batch unasked (JobServer::begin).
+  for (int c : coordinators) {
+    sources_.push_back(Source{c});
+    sources_.back().outstanding = true;
+  }
   stats_ = proto::WorkerStats{};
   stats_.worker = transport_.rank();
   stats_.step = step;
