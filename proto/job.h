@@ -23,6 +23,28 @@ struct JobInput {
 
 enum class Refresh : uint8_t { reuse = 0, refresh = 1 };
 
+/// After a job at (s, i) a point's next job is one of three; the point says for each
+/// whether it would refresh (PointModel::next_refresh), as bits of
+/// JobOutput::next_refresh, so the scheduler need not know the point's policy. A
+/// rollback changes the point's state, so the bits say nothing about a retry.
+enum NextJob : uint8_t {
+  next_iteration = 1,  ///< (s, i + 1): Newton goes on
+  restart_step = 2,    ///< (s, 1) after a commit: the next part of a cut step
+  next_step = 4,       ///< (s + 1, 1)
+  all_next_jobs = 7,
+};
+
+/// Whether the job at (step, iteration), following one at (last_step, last_iteration)
+/// with bits `next_refresh`, refreshes; false when it is none of the three (unknown:
+/// the scheduler then charges a move the factor rebuild).
+inline bool refreshes_next(uint8_t next_refresh, int last_step, int last_iteration, int step,
+                           int iteration) {
+  if (step == last_step && iteration == last_iteration + 1) return next_refresh & next_iteration;
+  if (step == last_step && iteration == 1) return next_refresh & restart_step;
+  if (step == last_step + 1 && iteration == 1) return next_refresh & next_step;
+  return false;
+}
+
 struct JobOutput {
   int32_t unit = -1;
   Mat9 A_hom = Mat9::Zero();  ///< Eq. (7): 𝔸_hom = Ā − Hχ
@@ -36,6 +58,8 @@ struct JobOutput {
   double cpu_assembly = 0.0;
   double cpu_refresh = 0.0;   ///< factorization + characteristic modes
   double cpu_solve = 0.0;     ///< Step 1 GMRES
+  uint8_t next_refresh = 0;   ///< NextJob bits: which possible next jobs would refresh
+  uint64_t state_bytes = 0;   ///< the point's serialized state now (what a move sends)
   uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)
   std::string message;        ///< why, when failed
 };

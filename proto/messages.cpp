@@ -1,5 +1,7 @@
 #include "proto/messages.h"
 
+#include <cmath>
+
 namespace fe2::proto {
 
 namespace {
@@ -17,6 +19,7 @@ const char* name_of(Type t) {
     case Type::batch: return "Batch";
     case Type::stats: return "Stats";
     case Type::state: return "State";
+    case Type::costs: return "Costs";
   }
   return "unknown";
 }
@@ -87,6 +90,8 @@ void pack_result(ByteWriter& w, const JobOutput& o) {
   w.put(o.cpu_assembly);
   w.put(o.cpu_refresh);
   w.put(o.cpu_solve);
+  w.put(o.next_refresh);
+  w.put(o.state_bytes);
   w.put(o.failed);
   w.put_string(o.message);
 }
@@ -107,9 +112,13 @@ JobOutput unpack_result(ByteReader& r) {
   o.cpu_assembly = r.get<double>();
   o.cpu_refresh = r.get<double>();
   o.cpu_solve = r.get<double>();
+  o.next_refresh = r.get<uint8_t>();
+  o.state_bytes = r.get<uint64_t>();
   o.failed = r.get<uint8_t>();
   o.message = r.get_string();
   if (o.unit < 0) throw Error(fmt::format("{}: result for unit {}", r.what(), o.unit));
+  if (o.next_refresh > all_next_jobs)
+    throw Error(fmt::format("{}: next-refresh bits {} out of range", r.what(), o.next_refresh));
   return o;
 }
 
@@ -239,6 +248,71 @@ UnitState UnitState::unpack(const Bytes& in) {
   finish(r);
   if (s.unit < 0) throw Error(fmt::format("State message: unit {}", s.unit));
   return s;
+}
+
+JobCost JobCost::of(const JobOutput& o) {
+  JobCost c;
+  c.unit = o.unit;
+  c.kind = o.kind;
+  c.gmres_iterations = o.gmres_iterations;
+  c.cpu_seconds = o.cpu_seconds;
+  c.cpu_refresh = o.cpu_refresh;
+  c.next_refresh = o.next_refresh;
+  c.state_bytes = o.state_bytes;
+  c.failed = o.failed;
+  return c;
+}
+
+void CostReport::pack(Bytes& out) const {
+  ByteWriter w(out);
+  header(w, Type::costs);
+  w.put(step);
+  w.put(iteration);
+  w.put<uint64_t>(jobs.size());
+  for (const JobCost& c : jobs) {
+    w.put(c.unit);
+    w.put(static_cast<uint8_t>(c.kind));
+    w.put(c.gmres_iterations);
+    w.put(c.cpu_seconds);
+    w.put(c.cpu_refresh);
+    w.put(c.next_refresh);
+    w.put(c.state_bytes);
+    w.put(c.failed);
+  }
+}
+
+CostReport CostReport::unpack(const Bytes& in) {
+  ByteReader r(in, "Costs message");
+  check_header(r, Type::costs);
+  CostReport rep;
+  rep.step = r.get<int32_t>();
+  rep.iteration = r.get<int32_t>();
+  const auto n = r.get<uint64_t>();
+  check_count<JobCost>(r, n, kJobCostBytes);
+  rep.jobs.resize(n);
+  for (JobCost& c : rep.jobs) {
+    c.unit = r.get<int32_t>();
+    const auto kind = r.get<uint8_t>();
+    c.gmres_iterations = r.get<int32_t>();
+    c.cpu_seconds = r.get<double>();
+    c.cpu_refresh = r.get<double>();
+    c.next_refresh = r.get<uint8_t>();
+    c.state_bytes = r.get<uint64_t>();
+    c.failed = r.get<uint8_t>();
+    // Validate on receipt: these numbers steer the rebalancer and land in the trace.
+    if (c.unit < 0 || kind > 1 || c.gmres_iterations < 0 || !(c.cpu_seconds >= 0.0) ||
+        !(c.cpu_refresh >= 0.0) || !std::isfinite(c.cpu_seconds) || !std::isfinite(c.cpu_refresh) ||
+        c.next_refresh > all_next_jobs || c.failed > 1)
+      throw Error(fmt::format(
+          "Costs message: invalid job cost (unit {}, kind {}, GMRES {}, cpu {} s, refresh {} s, "
+          "next-refresh bits {}, failed {})",
+          c.unit, kind, c.gmres_iterations, c.cpu_seconds, c.cpu_refresh, c.next_refresh, c.failed));
+    c.kind = static_cast<Refresh>(kind);
+  }
+  finish(r);
+  if (rep.step < 0 || rep.iteration < 1)
+    throw Error(fmt::format("Costs message: step {}, iteration {}", rep.step, rep.iteration));
+  return rep;
 }
 
 }  // namespace fe2::proto

@@ -10,11 +10,15 @@
 //   Batch    u8 done | u64 n | n × JobInput
 //   Stats    WorkerStats (fixed-size record)
 //   State    i32 unit | u64 n | n bytes (a unit's serialized state)
+//   Costs    i32 step | i32 iteration | u64 n | n × JobCost   (coordinator k -> 0, gathered)
 //   JobInput  = i32 unit, step, iteration | f64 time, dt | u8 apply_update, force_refresh |
 //               9 f64 Z̄ | 9 f64 Ż̄                                   (kJobInputBytes)
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
-//               u8 status | message string                          (kJobOutputBytes + text)
+//               u8 next_refresh | u64 state_bytes | u8 status | message string
+//                                                                   (kJobOutputBytes + text)
+//   JobCost   = i32 unit | u8 kind | i32 gmres | f64 cpu, cpu_refresh | u8 next_refresh |
+//               u64 state_bytes | u8 failed                         (kJobCostBytes)
 // Little-endian, native doubles: all ranks of one job run on one architecture.
 #include "common/bytes.h"
 #include "proto/job.h"
@@ -25,13 +29,14 @@
 
 namespace fe2::proto {
 
-enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6 };
+enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6, costs = 7 };
 
 /// Point-to-point tags; one per message type.
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
 constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8;
-constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 1;
+constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 1;
 
 /// Reads and checks the header; throws fe2::Error naming both versions on mismatch.
 void check_header(ByteReader& r, Type expected);
@@ -96,6 +101,28 @@ struct UnitState {
   Bytes state;
   void pack(Bytes& out) const;
   static UnitState unpack(const Bytes& in);
+};
+
+/// What the scheduler's cost model and the unit trace need of one job: a JobOutput
+/// without its tensors (about 30 bytes instead of 800).
+struct JobCost {
+  int32_t unit = -1;
+  Refresh kind = Refresh::reuse;
+  int32_t gmres_iterations = 0;
+  double cpu_seconds = 0.0;     ///< whole job
+  double cpu_refresh = 0.0;     ///< its factorization and χ, if any
+  uint8_t next_refresh = 0;     ///< NextJob bits
+  uint64_t state_bytes = 0;
+  uint8_t failed = 0;
+  static JobCost of(const JobOutput& o);
+};
+
+/// One coordinator's job costs of one Newton iteration, gathered on coordinator 0.
+struct CostReport {
+  int32_t step = 0, iteration = 0;
+  std::vector<JobCost> jobs;
+  void pack(Bytes& out) const;
+  static CostReport unpack(const Bytes& in);
 };
 
 void pack_job(ByteWriter& w, const JobInput& j);

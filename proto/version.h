@@ -4,6 +4,6 @@
 namespace fe2::proto {
 
 /// Bumped whenever any message layout changes. Ranks refuse to talk across versions.
-constexpr uint16_t kProtocolVersion = 1;
+constexpr uint16_t kProtocolVersion = 2;
 
 }  // namespace fe2::proto

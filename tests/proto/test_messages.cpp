@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace fe2::proto {
 namespace {
 
@@ -121,6 +123,88 @@ TEST(Messages, ControlStatsStateHelloRoundTrip) {
   h.pack(b4);
   EXPECT_EQ(Hello::unpack(b4).spec_hash, 0xdeadbeefu);
   expect_rejects_corruption<Hello>(b4);
+}
+
+// The cost message: what coordinator 0 needs of each job, and nothing invalid gets in.
+TEST(Messages, CostReportRoundTripAndCorruption) {
+  CostReport c;
+  c.step = 4;
+  c.iteration = 3;
+  JobOutput o = some_result(12);
+  o.cpu_refresh = 0.04;
+  o.next_refresh = next_step | restart_step;
+  o.state_bytes = 123456789;
+  o.failed = 0;
+  c.jobs = {JobCost::of(o), JobCost::of(some_result(2))};
+  Bytes bytes;
+  c.pack(bytes);
+  EXPECT_EQ(bytes.size(), 4 + 2 * 4 + 8 + 2 * kJobCostBytes);  // sizes from one constexpr
+  const CostReport back = CostReport::unpack(bytes);
+  EXPECT_EQ(back.step, 4);
+  EXPECT_EQ(back.iteration, 3);
+  ASSERT_EQ(back.jobs.size(), 2u);
+  const JobCost& j = back.jobs[0];
+  EXPECT_EQ(j.unit, 12);
+  EXPECT_EQ(j.kind, Refresh::refresh);
+  EXPECT_EQ(j.gmres_iterations, 4);
+  EXPECT_EQ(j.cpu_seconds, 0.1);
+  EXPECT_EQ(j.cpu_refresh, 0.04);
+  EXPECT_EQ(j.next_refresh, next_step | restart_step);
+  EXPECT_EQ(j.state_bytes, 123456789u);
+  EXPECT_EQ(j.failed, 0);
+  EXPECT_EQ(back.jobs[1].failed, 1);
+  expect_rejects_corruption<CostReport>(bytes);
+  // Values that would mislead the rebalancer are refused on receipt.
+  auto with = [&](auto change) {
+    CostReport bad = c;
+    change(bad.jobs[1]);
+    Bytes b;
+    bad.pack(b);
+    return b;
+  };
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.unit = -1; })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.cpu_seconds = -1.0; })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.cpu_refresh = NAN; })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.next_refresh = 8; })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.kind = static_cast<Refresh>(2); })), Error);
+  // A message of another type is refused.
+  Pull p;
+  Bytes other;
+  p.pack(other);
+  EXPECT_THROW(CostReport::unpack(other), Error);
+}
+
+TEST(Messages, ResultCarriesTheNextRefreshBitsAndStateSize) {
+  Pull p;
+  p.worker = 0;
+  JobOutput o = some_result(3);
+  o.next_refresh = next_iteration;
+  o.state_bytes = 4096;
+  p.results = {o};
+  Bytes bytes;
+  p.pack(bytes);
+  const Pull back = Pull::unpack(bytes);
+  EXPECT_EQ(back.results[0].next_refresh, next_iteration);
+  EXPECT_EQ(back.results[0].state_bytes, 4096u);
+  o.next_refresh = 9;  // no such bit
+  p.results = {o};
+  Bytes bad;
+  p.pack(bad);
+  EXPECT_THROW(Pull::unpack(bad), Error);
+}
+
+// Which bit answers for which next job: (s, i+1), (s, 1) and (s+1, 1); anything else
+// is unknown (no refresh assumed).
+TEST(Messages, RefreshesNextPicksTheBitOfTheFollowingJob) {
+  EXPECT_TRUE(refreshes_next(next_iteration, 5, 2, 5, 3));
+  EXPECT_FALSE(refreshes_next(restart_step | next_step, 5, 2, 5, 3));
+  EXPECT_TRUE(refreshes_next(restart_step, 5, 2, 5, 1));
+  EXPECT_FALSE(refreshes_next(next_iteration | next_step, 5, 2, 5, 1));
+  EXPECT_TRUE(refreshes_next(next_step, 5, 2, 6, 1));
+  EXPECT_FALSE(refreshes_next(next_iteration | restart_step, 5, 2, 6, 1));
+  EXPECT_FALSE(refreshes_next(all_next_jobs, 5, 2, 7, 1));  // not a job that can follow
+  EXPECT_FALSE(refreshes_next(all_next_jobs, 5, 2, 5, 4));
+  EXPECT_FALSE(refreshes_next(all_next_jobs, -2, 0, 0, 1));  // after a rollback: unknown
 }
 
 }  // namespace
