@@ -1,0 +1,96 @@
+// The refresh policies (paper Fig. 6) as scripted sequences with exact answers: which
+// job refactors, given the libraries' flop counts and each job's GMRES iterations.
+#include "worker/RefreshPolicy.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace fe2 {
+namespace {
+
+using Kind = RefreshPolicy::Kind;
+
+TEST(RefreshPolicy, EveryIterationAndFixedAreTablesOfStepAndIteration) {
+  const RefreshPolicy every(Kind::every_iteration, 10, 100.0);
+  const RefreshPolicy fixed(Kind::fixed, 3, 100.0);
+  for (int step = 0; step < 7; ++step)
+    for (int it = 1; it < 4; ++it) {
+      EXPECT_TRUE(every.due(step, it));
+      EXPECT_EQ(fixed.due(step, it), it == 1 && (step == 0 || step == 3 || step == 6))
+          << "step " << step << " iteration " << it;
+    }
+}
+
+/// Runs jobs with the given GMRES iteration counts (a reuse job reports its count; a
+/// refresh job's count is ignored, as a fresh factor needs one) and returns the
+/// indices of the jobs that refreshed. Job 0 finds no factor and refreshes.
+std::vector<int> refresh_jobs(RefreshPolicy& p, const std::vector<int>& gmres) {
+  std::vector<int> refreshed;
+  for (int j = 0; j < static_cast<int>(gmres.size()); ++j) {
+    if (j == 0 || p.due(0, j + 1)) {
+      p.refreshed(10000.0, 1000.0);  // factor 10⁴ flops, one solve 10³
+      refreshed.push_back(j);
+    } else {
+      p.reused(gmres[j]);
+    }
+  }
+  return refreshed;
+}
+
+// Ski rental: one GMRES iteration costs a solve plus a product with K, 1000 + 200
+// flops; a refresh costs the factor and 9 solves for χ, 10⁴ + 9·10³ = 19000 flops. So
+// the policy refreshes once the iterations beyond one per job since the last refresh
+// reach 19000 / 1200 = 15.8, i.e. 16.
+TEST(RefreshPolicy, AdaptiveRefreshesExactlyWhenExcessKrylovWorkPaysForARefresh) {
+  RefreshPolicy p(Kind::adaptive, 10, 200.0);
+  p.refreshed(10000.0, 1000.0);
+  EXPECT_EQ(p.iteration_flops(), 1200.0);
+  EXPECT_EQ(p.refresh_flops(), 19000.0);
+  //                  job:  0  1  2  3  4  5  6  7  8  9 10 11 12 13 14
+  const std::vector<int> k{1, 1, 4, 6, 2, 5, 3, 1, 9, 9, 1, 1, 17, 1, 2};
+  // excess after jobs 1..6: 0, 3, 8, 9, 13, 15 (< 15.8); job 7 reuses (+0), job 8
+  // brings 23: job 9 refreshes. Then 0 (10), 0 (11), 16 (12) >= 15.8: job 13 refreshes.
+  EXPECT_EQ(refresh_jobs(p, k), (std::vector<int>{0, 9, 13}));
+  // 16 excess iterations pay for a refresh (19200 >= 19000 flops), 15 do not (18000).
+  RefreshPolicy q(Kind::adaptive, 10, 200.0);
+  q.refreshed(10000.0, 1000.0);
+  q.reused(16);
+  EXPECT_FALSE(q.due(0, 2));
+  q.reused(2);
+  EXPECT_TRUE(q.due(0, 3));
+  EXPECT_TRUE(q.due(5, 1)) << "adaptive ignores step and iteration";
+  q.refreshed(10000.0, 1000.0);
+  EXPECT_FALSE(q.due(0, 4)) << "a refresh pays the debt";
+}
+
+// A unit that never needs more than one GMRES iteration never refreshes again.
+TEST(RefreshPolicy, AdaptiveNeverRefreshesWhileTheFactorIsExact) {
+  RefreshPolicy p(Kind::adaptive, 10, 200.0);
+  EXPECT_EQ(refresh_jobs(p, std::vector<int>(50, 1)), std::vector<int>{0});
+}
+
+// The counters travel with a migrated unit: the copy decides as the original.
+TEST(RefreshPolicy, StateRoundTripKeepsTheDecision) {
+  RefreshPolicy a(Kind::adaptive, 10, 200.0);
+  a.refreshed(10000.0, 1000.0);
+  a.reused(10);
+  Bytes bytes;
+  ByteWriter w(bytes);
+  a.write(w);
+  RefreshPolicy b(Kind::adaptive, 10, 200.0);
+  ByteReader r(bytes, "policy");
+  b.read(r);
+  EXPECT_TRUE(r.at_end());
+  EXPECT_EQ(b.excess_iterations(), 9.0);
+  EXPECT_EQ(b.refresh_flops(), a.refresh_flops());
+  for (int more : {5, 1, 2, 3}) {  // excess 13, 13, 14, 16
+    a.reused(more);
+    b.reused(more);
+    EXPECT_EQ(a.due(0, 1), b.due(0, 1));
+  }
+  EXPECT_TRUE(b.due(0, 1));
+}
+
+}  // namespace
+}  // namespace fe2

@@ -1,0 +1,45 @@
+#include "worker/RefreshPolicy.h"
+
+#include "common/error.h"
+
+#include <algorithm>
+
+namespace fe2 {
+
+RefreshPolicy::RefreshPolicy(Kind kind, int N_t, double matvec_flops)
+    : kind_(kind), N_t_(N_t), matvec_flops_(matvec_flops) {
+  FE2_CHECK(N_t >= 1, "refresh policy: N_t = {}, expected >= 1", N_t);
+}
+
+bool RefreshPolicy::due(int step, int iteration) const {
+  switch (kind_) {
+    case Kind::every_iteration: return true;
+    case Kind::fixed: return iteration == 1 && step % N_t_ == 0;
+    case Kind::adaptive: return excess_iterations_ * iteration_flops() >= refresh_flops();
+  }
+  return true;
+}
+
+void RefreshPolicy::refreshed(double factor_flops, double solve_flops) {
+  factor_flops_ = factor_flops;
+  solve_flops_ = solve_flops;
+  excess_iterations_ = 0.0;
+}
+
+void RefreshPolicy::reused(int gmres_iterations) {
+  excess_iterations_ += std::max(0, gmres_iterations - 1);
+}
+
+void RefreshPolicy::write(ByteWriter& w) const {
+  w.put(excess_iterations_);
+  w.put(factor_flops_);
+  w.put(solve_flops_);
+}
+
+void RefreshPolicy::read(ByteReader& r) {
+  excess_iterations_ = r.get<double>();
+  factor_flops_ = r.get<double>();
+  solve_flops_ = r.get<double>();
+}
+
+}  // namespace fe2

@@ -1,0 +1,58 @@
+#pragma once
+// When a micro unit refactors K and recomputes χ (paper Fig. 6), as one small value
+// type: MicroUnit asks it before every job and tells it what each job cost; the task
+// farm learns its answers from the unit's cost report (proto::UnitCost), so the unit
+// and the scheduler cannot disagree about which job refreshes.
+//
+//   every_iteration  every job refreshes
+//   fixed            iteration 1 of every N_t-th step (the paper's choice)
+//   adaptive         ski rental on the libraries' own flop counts: refresh once the
+//                    GMRES work beyond one iteration per job since the last refresh,
+//                      Σ_jobs max(0, k_j − 1) · (solve + matvec),
+//                    has cost as much as the refresh it avoids, factor + 9 solves (χ).
+//                    Flop counts, not seconds: the same decision on every rank and run.
+//
+// A forced refresh (job flag) and a unit without a factor refresh regardless; that is
+// MicroUnit's business, not the policy's.
+#include "common/bytes.h"
+#include "worker/MicroModel.h"
+
+namespace fe2 {
+
+class RefreshPolicy {
+ public:
+  using Kind = MicroSolverOptions::Refresh;
+
+  /// `matvec_flops`: one product with K (2 nnz), part of each GMRES iteration.
+  RefreshPolicy(Kind kind, int N_t, double matvec_flops);
+
+  /// Whether a job at (step, iteration) refreshes under this policy, now.
+  bool due(int step, int iteration) const;
+
+  /// A refresh happened: its factor cost `factor_flops`, one solve `solve_flops`.
+  void refreshed(double factor_flops, double solve_flops);
+  /// A job reused the factor and its Step 1 GMRES took `gmres_iterations`.
+  void reused(int gmres_iterations);
+
+  Kind kind() const { return kind_; }
+  /// Adaptive: GMRES iterations beyond one per job since the last refresh.
+  double excess_iterations() const { return excess_iterations_; }
+  /// Adaptive cost model (flops): one more GMRES iteration, and one refresh.
+  double iteration_flops() const { return solve_flops_ + matvec_flops_; }
+  double refresh_flops() const { return factor_flops_ + 9.0 * solve_flops_; }
+
+  /// The mutable part (counters and flop counts) to bytes and back; kind, N_t and the
+  /// matvec cost come from the unit model.
+  void write(ByteWriter& w) const;
+  void read(ByteReader& r);
+
+ private:
+  Kind kind_;
+  int N_t_;
+  double matvec_flops_;
+  double excess_iterations_ = 0.0;
+  double factor_flops_ = 0.0;  ///< of the last refresh
+  double solve_flops_ = 0.0;
+};
+
+}  // namespace fe2
