@@ -1,6 +1,8 @@
 // Issue #2, test 4: the Schur route (Eqs. 6–10, as the coordinator and units run it)
 // gives the same Newton increment as a direct solve of the full system of Eq. (5).
 #include "tests/coordinator/scene_fixtures.h"
+#include "tests/support/non_potential_law.h"
+#include "tests/worker/unit_fixtures.h"
 #include "worker/MicroUnit.h"
 
 #include <gtest/gtest.h>
@@ -11,11 +13,14 @@
 namespace fe2 {
 namespace {
 
-TEST(BlockElimination, SchurRouteEqualsDirectSolveOfEquationFive) {
+RunSpec one_iteration_scene() {
   json j = test::beam({{"kind", "fe2"}, {"unit", test::two_cell_unit("every_iteration")}}, 1);
   j.erase("pressure");
   j["newton"]["max_iterations"] = 1;  // exactly one Newton iteration
-  const RunSpec spec = read_run_spec(j, "");
+  return read_run_spec(j, "");
+}
+
+void expect_schur_route_equals_direct_solve(const RunSpec& spec) {
   LocalEvaluator points(spec.models, spec.model_of_points());
 
   // A state far from equilibrium: random periodic fluctuations in every unit (ū = 0).
@@ -84,6 +89,37 @@ TEST(BlockElimination, SchurRouteEqualsDirectSolveOfEquationFive) {
     const Vec dw_direct = direct.segment(offset[k], offset[k + 1] - offset[k]);
     EXPECT_LT((dw - dw_direct).norm() / dw_direct.norm(), 1e-10) << "unit " << k;
   }
+}
+
+TEST(BlockElimination, SchurRouteEqualsDirectSolveOfEquationFive) {
+  expect_schur_route_equals_direct_solve(one_iteration_scene());
+}
+
+// The same with a non-potential cell law: H ≠ Gᵀ, LU factors, an unsymmetric Schur
+// complement (the lower-left block above uses H, the upper-right G).
+TEST(BlockElimination, UnsymmetricUnitsSchurRouteEqualsDirectSolve) {
+  RunSpec spec = one_iteration_scene();
+  CellLayout c;
+  c.kind = "two_cells";
+  c.size = Vec3(1.0, 0.4, 0.4);
+  c.resolution = {4, 4, 4};
+  c.gap = 0.125;
+  c.cross_section = 0.5;
+  MicroSolverOptions opt;
+  opt.refresh = MicroSolverOptions::Refresh::every_iteration;
+  spec.models[0].micro = test::make_unit_model(
+      c, {std::make_shared<NeoHookean>(2.0e3, 0.3), std::make_shared<test::NonPotentialLaw>(2.0e4, 0.4, 0.3)},
+      opt);
+  ASSERT_FALSE(spec.models[0].micro->symmetric());
+  expect_schur_route_equals_direct_solve(spec);
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  auto* unit = dynamic_cast<MicroUnit*>(&points.point(0));
+  ASSERT_NE(unit, nullptr);
+  proto::JobInput in;
+  in.Zbar = Vec9::Constant(0.01);
+  unit->iterate(in);
+  EXPECT_EQ(unit->factor_kind(), FactorKind::lu);
+  EXPECT_GT((unit->system().G - unit->system().H.transpose()).norm(), 1e-3 * unit->system().G.norm());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // Issue #2, tests 1–3: the homogenized response of a unit against exact answers.
 #include "common/materials/Guccione.h"
+#include "tests/support/non_potential_law.h"
 #include "tests/worker/unit_fixtures.h"
 #include "worker/unit_equilibrium.h"
 
@@ -126,6 +127,82 @@ TEST(HardHomogenization, TangentMatchesFiniteDifferencesOfEquilibratedStress) {
   // The unit is really heterogeneous: its tangent is not the volume average ⟨𝔸⟩.
   EXPECT_GT(rel_diff(eq.A_hom, unit.system().Abar), 1e-2);
   EXPECT_GT(eq.newton_iterations, 2);
+}
+
+// The unsymmetric path (H ≠ Gᵀ, LU): a phase with a non-potential law. The exact
+// laminate formula holds for any tangent (it uses only traction continuity), and 𝔸_hom
+// is still the derivative of the equilibrated P̄ — now an unsymmetric one.
+MicroModelPtr laminate_with(MaterialPtr a, MaterialPtr b, int axis, double fraction,
+                            std::array<int, 3> res) {
+  CellLayout c;
+  c.kind = "laminate";
+  c.size = Vec3(1.0, 0.8, 0.6);
+  c.axis = axis;
+  c.fraction = fraction;
+  c.resolution = res;
+  return test::make_unit_model(c, {std::move(a), std::move(b)});
+}
+
+TEST(NonPotentialUnit, LawHasUnsymmetricTangentThatIsItsStressDerivative) {
+  const test::NonPotentialLaw law(2.0e4, 0.3, 0.3);
+  const Vec9 Z = kGradients[1];
+  const Mat9 A = law.tangent(Z);
+  Mat9 fd;
+  for (int c = 0; c < 9; ++c)
+    fd.col(c) = (law.stress(Z + 1e-6 * Vec9::Unit(c)) - law.stress(Z - 1e-6 * Vec9::Unit(c))) / 2e-6;
+  EXPECT_LT(rel_diff(A, fd), 1e-7);
+  EXPECT_GT((A - A.transpose()).norm(), 0.05 * A.norm());
+}
+
+TEST(NonPotentialUnit, LaminateMatchesExactFormulaThroughLUAndSeparateG) {
+  auto a = std::make_shared<test::NonPotentialLaw>(2.0e4, 0.3, 0.3);
+  auto b = std::make_shared<StVenantKirchhoff>(1.0e3, 0.45);
+  for (int axis = 0; axis < 3; ++axis) {
+    MicroUnit unit(laminate_with(a, b, axis, 0.5, {axis == 0 ? 4 : 2, axis == 1 ? 4 : 2, axis == 2 ? 4 : 2}));
+    ASSERT_FALSE(unit.model().symmetric());
+    const UnitEquilibrium eq = equilibrate(unit, Vec9::Zero(), 1e-12, 5);
+    EXPECT_EQ(unit.factor_kind(), FactorKind::lu);
+    const MicroUnit::System& s = unit.system();
+    EXPECT_GT((s.G - s.H.transpose()).norm(), 1e-3 * s.G.norm()) << "G is assembled, not Hᵀ";
+    const Mat9 exact = laminate_tangent(a->tangent(Vec9::Zero()), b->tangent(Vec9::Zero()), 0.5,
+                                        Vec3::Unit(axis));
+    EXPECT_LT(rel_diff(eq.A_hom, exact), 1e-8) << "axis " << axis;
+    EXPECT_GT((exact - exact.transpose()).norm(), 1e-2 * exact.norm());
+  }
+}
+
+TEST(NonPotentialUnit, TangentMatchesFiniteDifferencesOfEquilibratedStress) {
+  MicroSolverOptions opt;
+  opt.refresh = MicroSolverOptions::Refresh::every_iteration;
+  CellLayout c;
+  c.kind = "two_cells";
+  c.size = Vec3(1.0, 0.4, 0.4);
+  c.resolution = {4, 3, 3};
+  c.gap = 0.1;
+  c.cross_section = 0.5;
+  const auto model = test::make_unit_model(
+      c, {std::make_shared<NeoHookean>(1.0e3, 0.3), std::make_shared<test::NonPotentialLaw>(2.0e4, 0.4, 0.3)},
+      opt);
+  MicroUnit unit(model);
+  const Vec9 Z = kGradients[1];
+  const UnitEquilibrium eq = equilibrate(unit, Z, 1e-12, 20);
+  EXPECT_EQ(unit.factor_kind(), FactorKind::lu);
+  Bytes state;
+  unit.serialize(state);
+  const double h = 1e-5;
+  Mat9 fd;
+  for (int col = 0; col < 9; ++col) {
+    Vec9 P[2];
+    for (int s = 0; s < 2; ++s) {
+      MicroUnit u(model);
+      u.deserialize(state);
+      P[s] = equilibrate(u, Z + (s ? -h : h) * Vec9::Unit(col), 1e-12, 20).P_bar;
+    }
+    fd.col(col) = (P[0] - P[1]) / (2 * h);
+  }
+  EXPECT_LT(rel_diff(eq.A_hom, fd), 1e-6);
+  EXPECT_GT((eq.A_hom - eq.A_hom.transpose()).norm(), 1e-2 * eq.A_hom.norm());
+  EXPECT_GT(rel_diff(eq.A_hom, unit.system().Abar), 1e-2) << "really heterogeneous";
 }
 
 }  // namespace
