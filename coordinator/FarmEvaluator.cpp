@@ -25,16 +25,8 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
       t0_(wall_seconds()) {
   if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
   if (coords_.rank() == 0) {
-    std::vector<double> bytes(placement_.size());
-    for (size_t u = 0; u < bytes.size(); ++u) {
-      const auto& m = spec.models[spec.model_index_of_tet(static_cast<int>(u))];
-      // State: w, δw₁, committed w (3 n), χ (9 n), K at the last refresh (nnz).
-      bytes[u] = m.kind == PointModelSpec::Kind::fe2
-                     ? 8.0 * (12.0 * m.micro->num_dofs() +
-                              static_cast<double>(m.micro->pattern().nonZeros()))
-                     : 128.0;
-    }
-    costs_.emplace(std::move(bytes));
+    costs_.emplace(placement_.size());
+    last_cost_.resize(placement_.size());
   }
 }
 
@@ -47,14 +39,9 @@ void FarmEvaluator::send_to_pure_workers(const proto::Control& c) {
 }
 
 bool FarmEvaluator::next_job_refreshes(int unit, int step, int iteration) const {
-  const auto& m = spec_.models[spec_.model_index_of_tet(unit)];
-  if (m.kind != PointModelSpec::Kind::fe2) return false;
-  switch (m.micro->options().refresh) {
-    case MicroSolverOptions::Refresh::every_iteration: return true;
-    case MicroSolverOptions::Refresh::fixed:
-      return iteration == 1 && step % m.micro->options().N_t == 0;
-    default: return false;
-  }
+  // The unit said, with its last result, which of its possible next jobs refresh.
+  return proto::refreshes_next(last_cost_[unit].next_refresh, last_costs_at_.first,
+                               last_costs_at_.second, step, iteration);
 }
 
 void FarmEvaluator::rebalance(int step, int iteration) {
@@ -161,22 +148,27 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       if (trace_) trace_->worker(s, micro_phase, t0_);
     }
   }
-  // Per-unit costs to rank 0: the cost model and the unit trace.
-  Bytes mine;
-  ByteWriter w(mine);
-  w.put<uint64_t>(out.size());
-  for (const auto& r : out) proto::pack_result(w, r);
-  const std::vector<Bytes> all = coords_.gather(mine, 0);
+  // Per-unit costs to rank 0 (the cost model and the unit trace), as a small message.
+  proto::CostReport mine;
+  mine.step = step;
+  mine.iteration = iteration;
+  mine.jobs.reserve(out.size());
+  for (const auto& r : out) mine.jobs.push_back(proto::JobCost::of(r));
+  Bytes packed;
+  mine.pack(packed);
+  const std::vector<Bytes> all = coords_.gather(packed, 0);
   if (coords_.rank() == 0) {
     for (const Bytes& b : all) {
-      ByteReader r(b, "unit costs");
-      const auto n = r.get<uint64_t>();
-      for (uint64_t i = 0; i < n; ++i) {
-        const proto::JobOutput o = proto::unpack_result(r);
-        costs_->observe(o.unit, o.kind == proto::Refresh::refresh, o.cpu_seconds, o.cpu_refresh);
-        if (trace_) trace_->unit(step, iteration, placement_[o.unit], o);
+      const proto::CostReport rep = proto::CostReport::unpack(b);
+      for (const proto::JobCost& c : rep.jobs) {
+        FE2_CHECK(static_cast<size_t>(c.unit) < last_cost_.size(), "cost of unknown unit {}", c.unit);
+        costs_->observe(c.unit, c.kind == proto::Refresh::refresh, c.cpu_seconds, c.cpu_refresh,
+                        static_cast<double>(c.state_bytes));
+        last_cost_[c.unit] = c;
+        if (trace_) trace_->unit(step, iteration, placement_[c.unit], c);
       }
     }
+    last_costs_at_ = {step, iteration};
   }
   have_costs_ = true;
   (void)t_start;
@@ -190,6 +182,9 @@ void FarmEvaluator::commit_step() {
 }
 
 void FarmEvaluator::rollback_step() {
+  // A rollback restores the units' committed state: their next-refresh bits, given
+  // before it, no longer hold (the retry's moves are charged a rebuild).
+  last_costs_at_ = {-2, 0};  // no job follows step -2: every bit reads "unknown"
   proto::Control c;
   c.command = proto::Command::rollback;
   send_to_pure_workers(c);

@@ -7,7 +7,8 @@
 //               jobs of its own units per worker (JobServer)
 //   serve/work  serve pulls and, if this rank also works, run its own units' jobs
 //               (PullClient), until every result of this coordinator's units is in
-//   account     worker stats and per-unit costs reach coordinator 0 (traces, cost model)
+//   account     worker stats and per-unit costs (proto::CostReport) reach coordinator 0
+//               (traces, cost model)
 // @note Every member function is collective on the coordinator group.
 #include "coordinator/FarmLayout.h"
 #include "coordinator/JobServer.h"
@@ -56,6 +57,8 @@ class FarmEvaluator final : public PointEvaluator {
   std::optional<PullClient> client_;
   std::vector<int> placement_;
   std::optional<CostModel> costs_;  ///< rank 0
+  std::vector<proto::JobCost> last_cost_;      ///< rank 0: each unit's last job
+  std::pair<int, int> last_costs_at_{-2, 0};   ///< (step, iteration) of those jobs
   bool have_costs_ = false;
   int last_step_ = -1;
   IterationTiming last_;

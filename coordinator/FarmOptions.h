@@ -1,5 +1,7 @@
 #pragma once
 // How a run is spread over MPI ranks (spec section "farm"; DESIGN §3).
+#include "common/spec/SpecNode.h"
+
 #include <string>
 
 namespace fe2 {
@@ -14,6 +16,10 @@ struct FarmOptions {
   double tolerated_imbalance = 0.05;///< ... and only if max/mean predicted load exceeds 1 + this
   double latency = 2e-6;            ///< network model: seconds per message
   double bandwidth = 5e9;           ///< network model: bytes per second (paper: 5 GB/s links)
+
+  /// Reads the spec section "farm" (every key optional): the run and `farm-sim`
+  /// (which replays a run from its spec.json) share these declarations.
+  static FarmOptions from_spec(SpecNode farm);
 };
 
 }  // namespace fe2

@@ -5,12 +5,12 @@
 
 namespace fe2 {
 
-CostModel::CostModel(std::vector<double> state_bytes) : rec_(state_bytes.size()) {
-  for (size_t u = 0; u < rec_.size(); ++u) rec_[u].state_bytes = state_bytes[u];
-}
+CostModel::CostModel(size_t units) : rec_(units) {}
 
-void CostModel::observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh) {
+void CostModel::observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh,
+                        double state_bytes) {
   Record& r = rec_[unit];
+  r.state_bytes = state_bytes;
   if (refreshed) {
     r.refresh = cpu_seconds;
     r.refresh_part = cpu_refresh;

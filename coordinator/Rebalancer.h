@@ -4,9 +4,10 @@
 //
 // Predicted cost of a unit's next job: its last measured CPU cost of the same kind
 // (refresh or reuse). Moving a unit costs the transfer of its state (latency +
-// bytes / bandwidth, paid by both ends) and, unless its next job refreshes the
-// factor anyway, one factorization at the destination to rebuild it: this is how the
-// plan prefers migrating at factor-refresh boundaries.
+// bytes / bandwidth, paid by both ends; the size the unit last reported) and, unless
+// its next job refreshes the factor anyway (as the unit's own policy reports it), one
+// factorization at the destination to rebuild it: this is how the plan prefers
+// migrating at factor-refresh boundaries.
 //
 // Plan: two candidates, the better predicted makespan wins (fewer moves on a tie):
 //  - local search from the current placement: repeatedly take the most and the least
@@ -46,9 +47,11 @@ struct Plan {
 /// shared by the run and farm-sim).
 class CostModel {
  public:
-  explicit CostModel(std::vector<double> state_bytes);
-  /// A measured job: CPU seconds of the whole job and of its factorization, if any.
-  void observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh);
+  explicit CostModel(size_t units);
+  /// A measured job: CPU seconds of the whole job and of its factorization, if any,
+  /// and the unit's serialized state size after it (as the unit reports them).
+  void observe(int unit, bool refreshed, double cpu_seconds, double cpu_refresh,
+               double state_bytes);
   /// The UnitCost of each unit's next job; `refreshes(u)` says if it will refresh.
   template <class RefreshPredicate>
   std::vector<UnitCost> predict(RefreshPredicate refreshes) const {

@@ -266,32 +266,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   }
   probes.finish();
 
-  SpecNode farm = root.child("farm", false, "MPI task farm (ranks, scheduling)");
-  FarmOptions& fo = spec.farm;
-  fo.coordinators = farm.integer("coordinators", 1, Range::closed(1, 1e6),
-                                 "ranks that own the macro problem (or --coordinators)");
-  fo.coordinators_work = farm.boolean("coordinators_work", true,
-                                      "coordinator ranks also hold units (paper ranks 0–63)");
-  const std::string pol = farm.choice("policy", "cost_based",
-                                      {"round_robin", "contiguous", "cost_based"},
-                                      "unit placement: static, or rebalanced by measured cost");
-  fo.policy = pol == "round_robin"  ? FarmOptions::Policy::round_robin
-              : pol == "contiguous" ? FarmOptions::Policy::contiguous
-                                    : FarmOptions::Policy::cost_based;
-  fo.rebalance_at = farm.choice("rebalance_at", "iteration", {"iteration", "step"},
-                                "when the cost-based policy may migrate units") == "iteration"
-                        ? FarmOptions::When::iteration
-                        : FarmOptions::When::step;
-  fo.batch = farm.integer("batch", 4, Range::closed(1, 1e6), "jobs a worker pulls at once");
-  fo.min_gain = farm.number("min_gain", 0.03, Range::closed(0.0, 1.0),
-                            "least relative makespan gain worth a migration");
-  fo.tolerated_imbalance = farm.number("tolerated_imbalance", 0.05, Range::closed(0.0, 10.0),
-                                       "no rebalance while predicted max/mean load <= 1 + this");
-  fo.latency = farm.number("latency", 2e-6, Range::non_negative(),
-                           "network model: seconds per message");
-  fo.bandwidth = farm.number("bandwidth", 5e9, Range::positive(),
-                             "network model: bytes per second");
-  farm.finish();
+  spec.farm = FarmOptions::from_spec(root.child("farm", false, "MPI task farm (ranks, scheduling)"));
 
   SpecNode out = root.child("output", false, "results");
   spec.output_every = out.integer("every", 1, Range::closed(1, 1e7), "write every k-th step");

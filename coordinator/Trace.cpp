@@ -46,15 +46,16 @@ void Trace::worker(const proto::WorkerStats& s, double micro_phase, double t0) {
   workers_ << j.dump() << '\n';
 }
 
-void Trace::unit(int step, int iteration, int worker, const proto::JobOutput& r) {
+void Trace::unit(int step, int iteration, int worker, const proto::JobCost& c) {
   const nlohmann::json j = {{"step", step},
                             {"iteration", iteration},
-                            {"unit", r.unit},
+                            {"unit", c.unit},
                             {"worker", worker},
-                            {"cost", r.cpu_seconds},
-                            {"refresh_cost", r.cpu_refresh},
-                            {"kind", r.kind == proto::Refresh::refresh ? "refresh" : "reuse"},
-                            {"gmres", r.gmres_iterations}};
+                            {"cost", c.cpu_seconds},
+                            {"refresh_cost", c.cpu_refresh},
+                            {"kind", c.kind == proto::Refresh::refresh ? "refresh" : "reuse"},
+                            {"gmres", c.gmres_iterations},
+                            {"state_bytes", c.state_bytes}};
   units_ << j.dump() << '\n';  // flushed with the iteration line
 }
 

@@ -4,7 +4,8 @@
 //                           comm2 (seconds, coordinator 0), bytes, migrations
 //   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
 //                           wall), idle, wait, t_begin/t_end, migrations, bytes
-//   trace_units.jsonl       per (step, iteration, unit): worker, cost, kind, GMRES
+//   trace_units.jsonl       per (step, iteration, unit): worker, cost, refresh_cost,
+//                           kind, GMRES, state_bytes
 // Written by rank 0 only; every line is flushed, so a stopped run keeps its trace.
 #include "proto/job.h"
 #include "proto/messages.h"
@@ -32,7 +33,7 @@ class Trace {
   explicit Trace(const std::string& dir);
   void iteration(const IterationTiming& t);
   void worker(const proto::WorkerStats& s, double micro_phase_seconds, double t0);
-  void unit(int step, int iteration, int worker, const proto::JobOutput& r);
+  void unit(int step, int iteration, int worker, const proto::JobCost& c);
 
  private:
   std::ofstream iterations_, workers_, units_;

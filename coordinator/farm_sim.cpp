@@ -16,6 +16,7 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
   for (const auto& it : t.iterations) {
     index[{it.at("step").get<int>(), it.at("iteration").get<int>()}] = in.macro.size();
     in.macro.push_back(it.at("macro").get<double>());
+    in.step.push_back(it.at("step").get<int>());
   }
   int units = 0;
   for (const auto& u : t.units) units = std::max(units, u.at("unit").get<int>() + 1);
@@ -24,15 +25,18 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
   in.cost.assign(n, std::vector<double>(units, 0.0));
   in.refreshed.assign(n, std::vector<char>(units, 0));
   in.refresh_part.assign(n, std::vector<double>(units, 0.0));
+  in.state_bytes.assign(units, 0.0);
   for (const auto& u : t.units) {
+    const int v = u.at("unit").get<int>();
+    in.state_bytes[v] = std::max(in.state_bytes[v], u.value("state_bytes", 0.0));
     auto it = index.find({u.at("step").get<int>(), u.at("iteration").get<int>()});
     if (it == index.end()) continue;  // an iteration the run did not finish
-    const int v = u.at("unit").get<int>();
     in.cost[it->second][v] = u.at("cost").get<double>();
     in.refreshed[it->second][v] = u.at("kind").get<std::string>() == "refresh";
     in.refresh_part[it->second][v] = u.value("refresh_cost", 0.0);
   }
-  in.state_bytes.assign(units, default_state_bytes);
+  for (double& b : in.state_bytes)
+    if (b <= 0.0) b = default_state_bytes;
   return in;
 }
 
@@ -42,7 +46,7 @@ FarmSimResult simulate_farm(const FarmSimInput& in, int workers, long long units
   const long long measured = static_cast<long long>(in.state_bytes.size());
   std::vector<double> bytes(units);
   for (long long v = 0; v < units; ++v) bytes[v] = in.state_bytes[v % measured];
-  CostModel model(bytes);
+  CostModel model(static_cast<size_t>(units));
   std::vector<int> where = static_placement(static_cast<int>(units), workers, o.policy).worker_of_unit;
   const double job_bytes = static_cast<double>(proto::kJobInputBytes + proto::kJobOutputBytes);
 
@@ -54,7 +58,9 @@ FarmSimResult simulate_farm(const FarmSimInput& in, int workers, long long units
     auto refreshes = [&](long long v) { return in.refreshed[i][v % measured] != 0; };
     std::fill(load.begin(), load.end(), 0.0);
     std::fill(jobs.begin(), jobs.end(), 0);
-    if (o.policy == FarmOptions::Policy::cost_based && model.known()) {
+    const bool new_step = in.step.empty() || i == 0 || in.step[i] != in.step[i - 1];
+    if (o.policy == FarmOptions::Policy::cost_based && model.known() &&
+        (o.rebalance_at == FarmOptions::When::iteration || new_step)) {
       const Plan plan = plan_rebalance(model.predict([&](int v) { return refreshes(v); }), where,
                                        workers, o);
       for (const auto& [v, to] : plan.moves) {
@@ -82,7 +88,8 @@ FarmSimResult simulate_farm(const FarmSimInput& in, int workers, long long units
     r.micro += makespan;
     r.entire += makespan + in.macro[i] * macro_scale;
     for (long long v = 0; v < units; ++v)
-      model.observe(static_cast<int>(v), refreshes(v), cost_of(v), in.refresh_part[i][v % measured]);
+      model.observe(static_cast<int>(v), refreshes(v), cost_of(v), in.refresh_part[i][v % measured],
+                    bytes[v]);
   }
   return r;
 }

@@ -10,6 +10,8 @@
 //             (latency each) + job and result bytes / bandwidth, + migrations
 //             (state bytes / bandwidth + latency at both ends, and a factorization at
 //             the destination unless the unit's job refreshes anyway);
+//   rebalancing = the run's: cost-based plans before every iteration, or only before a
+//             new step's first (farm.rebalance_at), from the same cost model;
 //   Micro+L+C(i) = max load;  Entire(i) = Micro+L+C(i) + macro(i) × macro_scale,
 //   macro(i) the measured Macro time of iteration i (coordinators do not scale with W).
 #include "coordinator/FarmOptions.h"
@@ -24,10 +26,12 @@ struct FarmSimInput {
   std::vector<std::vector<char>> refreshed;       ///< [iteration][unit]
   std::vector<std::vector<double>> refresh_part;  ///< [iteration][unit] factorization CPU
   std::vector<double> macro;                      ///< [iteration] seconds
+  std::vector<int> step;                          ///< [iteration] time step (empty: each new)
   std::vector<double> state_bytes;                ///< [unit]
 };
 
-/// From a run's traces; `state_bytes` per measured unit (a default estimate if empty).
+/// From a run's traces; `state_bytes` per measured unit is the largest its jobs
+/// reported (`default_state_bytes` for traces that do not record it).
 FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes = 1e6);
 
 struct FarmSimResult {

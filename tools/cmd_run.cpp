@@ -91,6 +91,9 @@ int run(const RunOptions& o) {
     spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
                        : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
                                                   : FarmOptions::Policy::cost_based;
+  // spec.json in the output is the spec that ran (farm-sim replays its farm section).
+  if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
+  if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
   const FarmLayout layout = FarmLayout::make(spec, world.size(), o.coordinators);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only

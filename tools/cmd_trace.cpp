@@ -1,5 +1,6 @@
 // `fe2heart trace summary|plot DIR` and `fe2heart farm-sim DIR`.
 #include "common/error.h"
+#include "common/spec/SpecNode.h"
 #include "coordinator/farm_sim.h"
 #include "coordinator/trace_analysis.h"
 #include "tools/commands.h"
@@ -54,24 +55,58 @@ int trace_plot(const std::string& dir, const std::string& out) {
   return 0;
 }
 
+namespace {
+
+/// The run's own farm settings (DIR/spec.json), then the command line's overrides.
+FarmOptions farm_options_of_run(const FarmSimOptions& o) {
+  const std::string file = o.dir + "/spec.json";
+  if (!std::filesystem::exists(file))
+    throw InputError(fmt::format("farm-sim: '{}' not found; expected the spec.json that "
+                                 "`fe2heart run` writes into its output folder",
+                                 file));
+  const json spec = read_json_file(file);
+  if (!spec.is_object())
+    throw InputError(fmt::format("farm-sim: '{}': got a JSON {}, expected a run spec object",
+                                 file, spec.type_name()));
+  FarmOptions f = FarmOptions::from_spec(SpecNode(spec, "").child("farm", false, "task farm"));
+  if (o.policy)
+    f.policy = *o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
+               : *o.policy == "contiguous" ? FarmOptions::Policy::contiguous
+                                           : FarmOptions::Policy::cost_based;
+  if (o.rebalance_at)
+    f.rebalance_at = *o.rebalance_at == "step" ? FarmOptions::When::step : FarmOptions::When::iteration;
+  if (o.latency) f.latency = *o.latency;
+  if (o.bandwidth) f.bandwidth = *o.bandwidth;
+  if (o.batch) f.batch = *o.batch;
+  if (o.min_gain) f.min_gain = *o.min_gain;
+  if (o.tolerated_imbalance) f.tolerated_imbalance = *o.tolerated_imbalance;
+  return f;
+}
+
+const char* policy_name(FarmOptions::Policy p) {
+  switch (p) {
+    case FarmOptions::Policy::round_robin: return "round_robin";
+    case FarmOptions::Policy::contiguous: return "contiguous";
+    case FarmOptions::Policy::cost_based: return "cost_based";
+  }
+  return "?";
+}
+
+}  // namespace
+
 int farm_sim(const FarmSimOptions& o) {
   const TraceData t = read_traces(o.dir);
   const FarmSimInput in = farm_sim_input(t);
   const long long measured = static_cast<long long>(in.state_bytes.size());
-  FarmOptions f;
-  f.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
-             : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
-                                        : FarmOptions::Policy::cost_based;
-  f.latency = o.latency;
-  f.bandwidth = o.bandwidth;
-  f.batch = o.batch;
+  const FarmOptions f = farm_options_of_run(o);
   std::vector<int> worker_counts = o.workers;
   if (worker_counts.empty()) worker_counts = {6144, 60000, 600000};
   fmt::print("farm-sim of {}: {} measured units, {} Newton iterations replayed; network "
-             "latency {:.1e} s, bandwidth {:.2g} B/s, batch {}; policy {}; macro time as "
-             "measured × {}\n",
-             o.dir, measured, in.macro.size(), f.latency, f.bandwidth, f.batch, o.policy,
-             o.macro_scale);
+             "latency {:.1e} s, bandwidth {:.2g} B/s, batch {}; policy {}, rebalance at {}, "
+             "tolerated imbalance {}, min gain {}; macro time as measured × {}\n",
+             o.dir, measured, in.macro.size(), f.latency, f.bandwidth, f.batch,
+             policy_name(f.policy), f.rebalance_at == FarmOptions::When::step ? "step" : "iteration",
+             f.tolerated_imbalance, f.min_gain, o.macro_scale);
   fmt::print("efficiency 'vs W/4': the paper's strong scaling (same units on W/4 workers as the "
              "base, e.g. 1536 -> 6144);\n'vs balance': Σ work / W over the predicted time.\n\n");
   fmt::print("{:>8} {:>6} {:>10} | {:>12} {:>12} | {:>9} {:>9} | {:>9} {:>9} | {:>6}\n", "workers",

@@ -1,5 +1,6 @@
 #pragma once
 // The fe2heart subcommands; each returns the process exit code.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,14 +35,14 @@ int spec_doc(const std::vector<std::string>& specs);
 int trace_summary(const std::string& dir, bool as_json);
 int trace_plot(const std::string& dir, const std::string& out);
 
+/// Farm settings left unset are the run's own (its DIR/spec.json "farm" section).
 struct FarmSimOptions {
   std::string dir;
   std::vector<int> workers;                     ///< empty: 6144, 60000, 600000
   std::vector<int> units_per_worker = {1, 4};
-  std::string policy = "cost_based";
-  double latency = 2e-6;
-  double bandwidth = 5e9;
-  int batch = 4;
+  std::optional<std::string> policy, rebalance_at;
+  std::optional<double> latency, bandwidth, min_gain, tolerated_imbalance;
+  std::optional<int> batch;
   double macro_scale = 1.0;
   long long max_units = 3000000;
 };

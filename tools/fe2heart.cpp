@@ -78,11 +78,22 @@ int main(int argc, char** argv) {
   c_sim->add_option("dir", sim.dir, "output folder of a run")->required();
   c_sim->add_option("--workers", sim.workers, "simulated worker counts (default 6144 60000 600000)");
   c_sim->add_option("--units-per-worker", sim.units_per_worker, "units per worker (default 1 4)");
-  c_sim->add_option("--policy", sim.policy, "placement policy")
+  // Farm settings default to the run's own (DIR/spec.json); these flags override them.
+  c_sim->add_option("--policy", sim.policy, "placement policy (default: the run's farm.policy)")
       ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
-  c_sim->add_option("--latency", sim.latency, "seconds per message (default 2e-6)");
-  c_sim->add_option("--bandwidth", sim.bandwidth, "bytes per second (default 5e9, the paper's links)");
-  c_sim->add_option("--batch", sim.batch, "jobs per pull")->check(CLI::Range(1, 1000000));
+  c_sim->add_option("--rebalance-at", sim.rebalance_at, "default: the run's farm.rebalance_at")
+      ->check(CLI::IsMember({"iteration", "step"}));
+  c_sim->add_option("--latency", sim.latency, "seconds per message (default: the run's farm.latency)")
+      ->check(CLI::NonNegativeNumber);
+  c_sim->add_option("--bandwidth", sim.bandwidth, "bytes per second (default: the run's farm.bandwidth)")
+      ->check(CLI::PositiveNumber);
+  c_sim->add_option("--batch", sim.batch, "jobs per pull (default: the run's farm.batch)")
+      ->check(CLI::Range(1, 1000000));
+  c_sim->add_option("--min-gain", sim.min_gain, "default: the run's farm.min_gain")
+      ->check(CLI::Range(0.0, 1.0));
+  c_sim->add_option("--tolerated-imbalance", sim.tolerated_imbalance,
+                    "default: the run's farm.tolerated_imbalance")
+      ->check(CLI::Range(0.0, 10.0));
   c_sim->add_option("--macro-scale", sim.macro_scale, "multiply the measured Macro time");
   c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
 

@@ -71,6 +71,24 @@ TEST(FarmSim, CostBasedMakespanIsTheSchedulersPlan) {
   EXPECT_GT(r.migrations, 0);
 }
 
+// farm.rebalance_at = step: like the run, plan only before a new step's first
+// iteration (iterations 0, 1 are step 0, iteration 2 is step 1).
+TEST(FarmSim, RebalanceAtStepPlansOnlyBeforeANewStep) {
+  const std::vector<double> cost = {9, 7, 6, 5, 4, 4, 3, 2, 2, 1, 1, 1};
+  FarmSimInput in = synthetic(cost, 3);
+  in.step = {0, 0, 1};
+  FarmOptions o = free_network(FarmOptions::Policy::cost_based);
+  o.rebalance_at = FarmOptions::When::step;
+  const auto at_step = simulate_farm(in, 3, 12, o);
+  EXPECT_EQ(at_step.makespan[0], 27.0);
+  EXPECT_EQ(at_step.makespan[1], 27.0) << "same step: no rebalance";
+  EXPECT_LE(at_step.makespan[2], 16.0) << "new step: the scheduler's plan";
+  o.rebalance_at = FarmOptions::When::iteration;
+  const auto every = simulate_farm(in, 3, 12, o);
+  EXPECT_LE(every.makespan[1], 16.0);
+  EXPECT_LE(every.makespan[2], 16.0);
+}
+
 TEST(Rebalancer, BalancesSeveralFoldCostsAndIsDeterministic) {
   // 6 expensive units (5) and 6 cheap ones (1), contiguous on 2 workers: 30 vs 6.
   std::vector<UnitCost> c(12);
