@@ -4,6 +4,7 @@
 //    names the key or file, the value, and what was expected. Exit code 2.
 //  - fe2::NumericalError: a solve failed (divergence, NaN, inverted element) in a
 //    way the caller may recover from by cutting the step. Exit code 3 if uncaught.
+//  - fe2::StallError: a peer rank stayed silent past farm.stall_timeout. Exit code 4.
 //  - FE2_CHECK: an always-on internal invariant; message carries file:line and
 //    function. FE2_ASSERT: the same, debug builds only.
 #include <spdlog/fmt/fmt.h>
@@ -29,6 +30,14 @@ class NumericalError : public Error {
  public:
   using Error::Error;
   int exit_code() const override { return 3; }
+};
+
+/// A rank waited longer than the liveness limit (farm.stall_timeout) for a message or
+/// a collective: a peer is frozen, lost or far slower than allowed. Exit code 4.
+class StallError : public Error {
+ public:
+  using Error::Error;
+  int exit_code() const override { return 4; }
 };
 
 [[noreturn]] void fail_check(const char* expr, const char* file, int line,

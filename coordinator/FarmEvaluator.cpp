@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <set>
 #include <thread>
 
 namespace fe2 {
@@ -110,11 +111,18 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   // (b)–(f) serve pulls and work, until all of this coordinator's results are in and
   // this rank's own units are done.
   auto client_done = [&] { return !client_ || client_->finished(); };
+  double last_progress = wall_seconds();
   while (!(server_.finished() && client_done())) {
     const long long before = server_.served() + (client_ ? client_->progress() : 0);
     if (!server_.finished()) server_.poll(false);
     if (!client_done()) client_->poll(false);
-    if (server_.served() + (client_ ? client_->progress() : 0) != before) continue;
+    if (server_.served() + (client_ ? client_->progress() : 0) != before) {
+      last_progress = wall_seconds();
+      continue;
+    }
+    if (wall_seconds() - last_progress > proto::stall_timeout())  // liveness limit
+      throw StallError(fmt::format("nothing arrived for {:.0f} s (farm.stall_timeout); {}",
+                                   proto::stall_timeout(), server_.describe_outstanding()));
     // Nothing happened: block on whichever side is left, or nap briefly when both
     // wait for messages (MPI cannot probe two tags at once).
     if (server_.finished()) {
@@ -141,8 +149,18 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
     transport_.send(0, proto::Type::stats, std::move(b));
   }
   if (coords_.rank() == 0) {
+    std::set<int> missing(layout_.worker_ranks.begin(), layout_.worker_ranks.end());
     for (size_t k = 0; k < layout_.worker_ranks.size(); ++k) {
-      const proto::WorkerStats s = proto::WorkerStats::unpack(transport_.recv(proto::Type::stats, MPI_ANY_SOURCE));
+      Bytes in;
+      try {
+        in = transport_.recv(proto::Type::stats, MPI_ANY_SOURCE);
+      } catch (const StallError& e) {
+        throw StallError(fmt::format("{}; silent: rank(s) {}, which ran their jobs of step {} "
+                                     "iteration {} but never reported",
+                                     e.what(), fmt::join(missing, ", "), step, iteration));
+      }
+      const proto::WorkerStats s = proto::WorkerStats::unpack(in);
+      missing.erase(s.worker);
       last_.bytes += s.bytes_sent + s.bytes_received;
       last_.jobs += s.jobs;
       if (trace_) trace_->worker(s, micro_phase, t0_);

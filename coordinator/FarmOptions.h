@@ -16,6 +16,10 @@ struct FarmOptions {
   double tolerated_imbalance = 0.05;///< ... and only if max/mean predicted load exceeds 1 + this
   double latency = 2e-6;            ///< network model: seconds per message
   double bandwidth = 5e9;           ///< network model: bytes per second (paper: 5 GB/s links)
+  /// Liveness limit: a rank that waits this long (wall seconds) for a message it needs
+  /// (a result, a batch, a control message, a collective) aborts the job naming whom it
+  /// waited for. Must exceed the longest single phase (one unit job, one macro solve).
+  double stall_timeout = 600.0;
 
   /// Reads the spec section "farm" (every key optional): the run and `farm-sim`
   /// (which replays a run from its spec.json) share these declarations.

@@ -2,11 +2,14 @@
 
 #include "common/cpu_timer.h"
 
+#include <algorithm>
+
 namespace fe2 {
 
 void JobServer::begin(const std::vector<proto::JobInput>& jobs, const std::vector<int>& worker_of_job,
                       int first_batch) {
   jobs_ = jobs;
+  worker_of_job_ = worker_of_job;
   results_.assign(jobs.size(), proto::JobOutput{});
   job_of_unit_.clear();
   queues_.clear();
@@ -46,7 +49,11 @@ bool JobServer::poll(bool block) {
   double t0 = wall_seconds();
   if (!transport_.try_recv(proto::Type::pull, in, &from)) {
     if (!block) return false;
-    in = transport_.recv(proto::Type::pull, MPI_ANY_SOURCE, &from);
+    try {
+      in = transport_.recv(proto::Type::pull, MPI_ANY_SOURCE, &from);
+    } catch (const StallError& e) {
+      throw StallError(fmt::format("{}; {}", e.what(), describe_outstanding()));
+    }
     t0 = wall_seconds();  // waiting is not communication cost
   }
   const proto::Pull pull = proto::Pull::unpack(in);
@@ -65,6 +72,25 @@ bool JobServer::poll(bool block) {
   send_batch(from, q->second, pull.max_jobs);
   comm1_ += wall_seconds() - t1;
   return finished();
+}
+
+std::string JobServer::describe_outstanding() const {
+  std::string out;
+  for (const auto& [worker, q] : queues_) {
+    if (q.done) continue;
+    std::vector<int> running;  // handed out, result not back
+    for (size_t k = 0; k < jobs_.size(); ++k)
+      if (worker_of_job_[k] == worker && results_[k].unit < 0 &&
+          std::find(q.jobs.begin(), q.jobs.end(), static_cast<int>(k)) == q.jobs.end())
+        running.push_back(jobs_[k].unit);
+    if (running.size() > 8) running.resize(8);
+    out += fmt::format("{}rank {} is silent: it holds {} unanswered job(s) of step {} iteration "
+                       "{} (units {}{})",
+                       out.empty() ? "" : "; ", worker, q.assigned - q.received,
+                       jobs_.front().step, jobs_.front().iteration, fmt::join(running, ", "),
+                       q.assigned - q.received > 8 ? ", ..." : "");
+  }
+  return out.empty() ? "no worker owes this coordinator a result" : out;
 }
 
 }  // namespace fe2

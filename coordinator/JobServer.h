@@ -8,6 +8,7 @@
 
 #include <deque>
 #include <map>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -29,6 +30,8 @@ class JobServer {
   long long served() const { return served_; }
   /// Results in job order.
   const std::vector<proto::JobOutput>& results() const { return results_; }
+  /// The workers whose results are still out and what they hold (for a stall report).
+  std::string describe_outstanding() const;
   double comm1_seconds() const { return comm1_; }  ///< packing and posting job batches
   double comm2_seconds() const { return comm2_; }  ///< receiving and unpacking results
 
@@ -44,6 +47,7 @@ class JobServer {
   proto::Transport& transport_;
   std::vector<proto::JobInput> jobs_;
   std::vector<proto::JobOutput> results_;
+  std::vector<int> worker_of_job_;
   std::unordered_map<int, int> job_of_unit_;
   std::map<int, Queue> queues_;
   int open_ = 0;

@@ -2,6 +2,8 @@
 
 #include "common/error.h"
 
+#include <exception>
+
 namespace fe2 {
 
 // MUMPS documents its controls 1-based.
@@ -20,9 +22,17 @@ MumpsSolver::MumpsSolver(MPI_Comm comm, int n) : n_(n) {
   id_.ICNTL(5) = 0;   // assembled
   id_.ICNTL(18) = 3;  // distributed assembled input
   id_.ICNTL(14) = 50; // workspace margin for pivoting (percent)
+  // Null-pivot detection: an under-constrained body (rigid-body modes left free) gives
+  // a singular S̄ that MUMPS would otherwise factor into a meaningless Δū, seen only
+  // later as "inverted element". INFOG(28) then counts the null pivots.
+  id_.ICNTL(24) = 1;
 }
 
 MumpsSolver::~MumpsSolver() {
+  // JOB = -2 is collective: while an exception unwinds, the other ranks of the group
+  // may never join it (they are computing, waiting elsewhere, or already aborting), so
+  // the instance is left to MPI_Abort / process exit (MFEM_ABORT's rule: abort first).
+  if (std::uncaught_exceptions() > 0) return;
   id_.job = -2;
   dmumps_c(&id_);
 }
@@ -60,6 +70,13 @@ void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::ve
   a_ = values;
   id_.a_loc = a_.data();
   run(2, "factorization");
+  if (id_.INFOG(28) > 0)
+    throw NumericalError(fmt::format(
+        "the macro matrix is singular: MUMPS found {} null pivot(s) (INFOG(28)) in {} equations. "
+        "Likely cause: the Dirichlet conditions leave rigid-body motions free (each of the 3 "
+        "translations and 3 rotations must be fixed, e.g. a face fixed in all components "
+        "[0,1,2], not only some); otherwise a material that lost all stiffness",
+        id_.INFOG(28), n_));
   id_.rhs = rhs.data();
   id_.nrhs = 1;
   id_.lrhs = n_;

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace fe2 {
@@ -105,11 +106,18 @@ void Simulation::compute_jobs(int step, int iteration, double t_new, double dt, 
     const int e = owned_[k];
     const auto& t = spec_.mesh.tets[e];
     const Vec9 Zbar = pts_[e].B * gather(u_, t);
+    const Vec9 Zdot = spec_.dynamic ? Vec9(pts_[e].B * gather(v_, t)) : Vec9((Zbar - Zbar_n_[e]) / dt);
+    // Non-finite first: NaN compares false, so it would pass as "inverted" below.
+    if (!Zbar.allFinite() || !Zdot.allFinite())
+      throw NumericalError(fmt::format("non-finite macro displacement gradient Z̄ or rate Ż̄ at "
+                                       "element {}, t = {:.6g}, dt = {:.3g}",
+                                       e, t_new, dt));
     const double J = (Mat3::Identity() + as_mat3(Zbar)).determinant();
+    if (!std::isfinite(J))
+      throw NumericalError(fmt::format("non-finite det F̄ at macro element {}, t = {:.6g}", e, t_new));
     if (!(J > 0.0))
       throw NumericalError(fmt::format("macro element {} inverted at t = {:.6g} (det F̄ = {:.3e})",
                                        e, t_new, J));
-    const Vec9 Zdot = spec_.dynamic ? Vec9(pts_[e].B * gather(v_, t)) : Vec9((Zbar - Zbar_n_[e]) / dt);
     proto::JobInput& job = jobs_[k];
     job.unit = e;
     job.step = step;
@@ -158,8 +166,14 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     agree_on_failure(why);
     evaluator_.evaluate(jobs_, results_);
     timing.micro_lc = wall_seconds() - t_begin;
-    for (const auto& r : results_)
-      if (r.failed && why.empty()) why = r.message;
+    for (const auto& r : results_) {
+      if (!why.empty()) break;
+      if (r.failed) why = r.message;
+      else if (!r.A_hom.allFinite() || !r.P_tilde.allFinite() || !r.P_bar.allFinite() ||
+               !std::isfinite(r.r_norm) || !std::isfinite(r.r_ref))
+        why = fmt::format("point {}: non-finite stress, tangent or residual at t = {:.6g}",
+                          r.unit, t_new);
+    }
     agree_on_failure(why);
     const double t_macro = wall_seconds();
 
@@ -252,6 +266,8 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
       group_.reduce_sum(g.data(), nfree, 0);
       mumps_.factorize_and_solve(values_, g);
       group_.bcast(g.data(), nfree, 0);
+      if (!std::all_of(g.begin(), g.end(), [](double x) { return std::isfinite(x); }))
+        throw NumericalError(fmt::format("non-finite macro correction Δū at t = {:.6g}", t_new));
     }
     timing.macro = wall_seconds() - t_macro;
     timing.entire = wall_seconds() - t_begin;

@@ -2,7 +2,11 @@
 
 #include "common/error.h"
 
+#include <chrono>
 #include <climits>
+#include <limits>
+#include <thread>
+#include <exception>
 
 namespace fe2::proto {
 
@@ -14,6 +18,62 @@ void check_mpi(int rc, const char* what) {
   throw Error(fmt::format("MPI {} failed: {} (code {})", what, std::string(text, len), rc));
 }
 
+namespace {
+double g_stall_timeout = std::numeric_limits<double>::infinity();
+
+const char* type_name(Type t) {
+  switch (t) {
+    case Type::hello: return "hello";
+    case Type::control: return "control";
+    case Type::pull: return "pull";
+    case Type::batch: return "batch";
+    case Type::stats: return "stats";
+    case Type::state: return "unit state";
+    case Type::costs: return "costs";
+  }
+  return "?";
+}
+
+/// Polls `done()` until it is true or the liveness limit passes (then false). Spins
+/// briefly (latency of short waits), then naps with growing pauses so a waiting rank
+/// leaves its core to a computing one.
+template <class Done>
+bool poll_alive(Done done, double patience) {
+  const double limit = patience * g_stall_timeout;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto nap = std::chrono::microseconds(10);
+  for (int spins = 0;; ++spins) {
+    if (done()) return true;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (waited > limit) return false;
+    if (spins < 2000) continue;
+    std::this_thread::sleep_for(nap);
+    nap = std::min(nap * 2, std::chrono::microseconds(1000));
+  }
+}
+}  // namespace
+
+void set_stall_timeout(double seconds) {
+  FE2_CHECK(seconds > 0, "stall timeout {} must be positive", seconds);
+  g_stall_timeout = seconds;
+}
+
+double stall_timeout() { return g_stall_timeout; }
+
+void wait_alive(MPI_Request& request, const std::string& what, double patience) {
+  const bool ok = poll_alive(
+      [&] {
+        int flag = 0;
+        check_mpi(MPI_Test(&request, &flag, MPI_STATUS_IGNORE), "Test");
+        return flag != 0;
+      },
+      patience);
+  if (!ok)
+    throw StallError(fmt::format("{}: no answer for {:.0f} s (farm.stall_timeout): a rank is "
+                                 "frozen, lost or slower than the limit",
+                                 what, patience * g_stall_timeout));
+}
+
 Group::Group(MPI_Comm comm, bool owned) : comm_(comm), owned_(owned) {
   if (comm_ == MPI_COMM_NULL) return;
   check_mpi(MPI_Comm_set_errhandler(comm_, MPI_ERRORS_RETURN), "Comm_set_errhandler");
@@ -22,7 +82,8 @@ Group::Group(MPI_Comm comm, bool owned) : comm_(comm), owned_(owned) {
 }
 
 Group::~Group() {
-  if (owned_ && comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
+  // MPI_Comm_free is collective: never while an exception unwinds (see MumpsSolver).
+  if (owned_ && comm_ != MPI_COMM_NULL && std::uncaught_exceptions() == 0) MPI_Comm_free(&comm_);
 }
 
 Group::Group(Group&& o) noexcept : comm_(o.comm_), owned_(o.owned_), rank_(o.rank_), size_(o.size_) {
@@ -44,42 +105,57 @@ Group& Group::operator=(Group&& o) noexcept {
 }
 
 void Group::allreduce_sum(double* v, int n) const {
-  check_mpi(MPI_Allreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm_), "Allreduce(sum)");
+  MPI_Request q;
+  check_mpi(MPI_Iallreduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, comm_, &q), "Iallreduce(sum)");
+  wait_alive(q, "collective Allreduce(sum)", kIndirectPatience);
 }
 
 double Group::allreduce_max(double x) const {
-  check_mpi(MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_), "Allreduce(max)");
+  MPI_Request q;
+  check_mpi(MPI_Iallreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_, &q), "Iallreduce(max)");
+  wait_alive(q, "collective Allreduce(max)", kIndirectPatience);
   return x;
 }
 
 int Group::allreduce_max(int x) const {
-  check_mpi(MPI_Allreduce(MPI_IN_PLACE, &x, 1, MPI_INT, MPI_MAX, comm_), "Allreduce(max)");
+  MPI_Request q;
+  check_mpi(MPI_Iallreduce(MPI_IN_PLACE, &x, 1, MPI_INT, MPI_MAX, comm_, &q), "Iallreduce(max)");
+  wait_alive(q, "collective Allreduce(max)", kIndirectPatience);
   return x;
 }
 
 void Group::reduce_sum(double* v, int n, int root) const {
+  MPI_Request q;
   if (rank_ == root)
-    check_mpi(MPI_Reduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, root, comm_), "Reduce(sum)");
+    check_mpi(MPI_Ireduce(MPI_IN_PLACE, v, n, MPI_DOUBLE, MPI_SUM, root, comm_, &q), "Ireduce(sum)");
   else
-    check_mpi(MPI_Reduce(v, nullptr, n, MPI_DOUBLE, MPI_SUM, root, comm_), "Reduce(sum)");
+    check_mpi(MPI_Ireduce(v, nullptr, n, MPI_DOUBLE, MPI_SUM, root, comm_, &q), "Ireduce(sum)");
+  wait_alive(q, "collective Reduce(sum)", kIndirectPatience);
 }
 
 void Group::bcast(double* v, int n, int root) const {
-  check_mpi(MPI_Bcast(v, n, MPI_DOUBLE, root, comm_), "Bcast");
+  MPI_Request q;
+  check_mpi(MPI_Ibcast(v, n, MPI_DOUBLE, root, comm_, &q), "Ibcast");
+  wait_alive(q, "collective Bcast", kIndirectPatience);
 }
 
 void Group::bcast(Bytes& b, int root) const {
   long long n = static_cast<long long>(b.size());
-  check_mpi(MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm_), "Bcast(size)");
+  MPI_Request q;
+  check_mpi(MPI_Ibcast(&n, 1, MPI_LONG_LONG, root, comm_, &q), "Ibcast(size)");
+  wait_alive(q, "collective Bcast(size)", kIndirectPatience);
   FE2_CHECK(n < INT_MAX, "broadcast of {} bytes", n);
   b.resize(static_cast<size_t>(n));
-  check_mpi(MPI_Bcast(b.data(), static_cast<int>(n), MPI_BYTE, root, comm_), "Bcast(bytes)");
+  check_mpi(MPI_Ibcast(b.data(), static_cast<int>(n), MPI_BYTE, root, comm_, &q), "Ibcast(bytes)");
+  wait_alive(q, "collective Bcast(bytes)", kIndirectPatience);
 }
 
 std::vector<Bytes> Group::gather(const Bytes& mine, int root) const {
   const int n = static_cast<int>(mine.size());
   std::vector<int> counts(rank_ == root ? size_ : 0), displs;
-  check_mpi(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_), "Gather(size)");
+  MPI_Request q;
+  check_mpi(MPI_Igather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_, &q), "Igather(size)");
+  wait_alive(q, "collective Gather(size)", kIndirectPatience);
   std::vector<std::byte> all;
   if (rank_ == root) {
     displs.resize(size_);
@@ -88,9 +164,10 @@ std::vector<Bytes> Group::gather(const Bytes& mine, int root) const {
     FE2_CHECK(total < INT_MAX, "gather of {} bytes", total);
     all.resize(static_cast<size_t>(total));
   }
-  check_mpi(MPI_Gatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(),
-                        MPI_BYTE, root, comm_),
-            "Gatherv");
+  check_mpi(MPI_Igatherv(mine.data(), n, MPI_BYTE, all.data(), counts.data(), displs.data(),
+                         MPI_BYTE, root, comm_, &q),
+            "Igatherv");
+  wait_alive(q, "collective Gatherv", kIndirectPatience);
   std::vector<Bytes> out;
   if (rank_ == root)
     for (int r = 0; r < size_; ++r)
@@ -98,7 +175,11 @@ std::vector<Bytes> Group::gather(const Bytes& mine, int root) const {
   return out;
 }
 
-void Group::barrier() const { check_mpi(MPI_Barrier(comm_), "Barrier"); }
+void Group::barrier() const {
+  MPI_Request q;
+  check_mpi(MPI_Ibarrier(comm_, &q), "Ibarrier");
+  wait_alive(q, "collective Barrier", kIndirectPatience);
+}
 
 Group Group::split(int color, int key) const {
   MPI_Comm out = MPI_COMM_NULL;
@@ -113,6 +194,7 @@ Transport::Transport(MPI_Comm world) : world_(world) {
 }
 
 Transport::~Transport() {
+  if (std::uncaught_exceptions() > 0) return;  // a peer may never receive: do not wait
   try {
     complete_sends();
   } catch (...) {
@@ -138,9 +220,21 @@ void Transport::reap() {
   }
 }
 
-Bytes Transport::recv(Type type, int source, int* from) {
+Bytes Transport::recv(Type type, int source, int* from, double patience) {
   MPI_Status st;
-  check_mpi(MPI_Probe(source, tag_of(type), world_, &st), "Probe");
+  const bool arrived = poll_alive(
+      [&] {
+        int flag = 0;
+        check_mpi(MPI_Iprobe(source, tag_of(type), world_, &flag, &st), "Iprobe");
+        return flag != 0;
+      },
+      patience);
+  if (!arrived)
+    throw StallError(fmt::format("no '{}' message from {} for {:.0f} s (farm.stall_timeout)",
+                                 type_name(type),
+                                 source == MPI_ANY_SOURCE ? std::string("any rank")
+                                                          : fmt::format("rank {}", source),
+                                 patience * g_stall_timeout));
   int n = 0;
   check_mpi(MPI_Get_count(&st, MPI_BYTE, &n), "Get_count");
   Bytes b(static_cast<size_t>(n));
@@ -162,7 +256,7 @@ bool Transport::try_recv(Type type, Bytes& out, int* from, int source) {
 }
 
 void Transport::complete_sends() {
-  for (auto& p : pending_) check_mpi(MPI_Wait(&p.request, MPI_STATUS_IGNORE), "Wait");
+  for (auto& p : pending_) wait_alive(p.request, "completing a send", kIndirectPatience);
   pending_.clear();
 }
 

@@ -9,12 +9,29 @@
 #include <mpi.h>
 
 #include <list>
+#include <string>
 #include <vector>
 
 namespace fe2::proto {
 
 /// Throws fe2::Error naming `what` and MPI's error text if rc is not MPI_SUCCESS.
 void check_mpi(int rc, const char* what);
+
+/// The liveness limit of this process, wall seconds (farm.stall_timeout; default: none).
+/// Every wait here — a receive, a collective — gives up after it with a StallError, so
+/// a frozen peer cannot hang the job.
+void set_stall_timeout(double seconds);
+double stall_timeout();
+
+/// Waits that depend on another waiting rank (a worker waiting for its coordinator's
+/// next command or batch, a coordinator in a collective with the others) allow this
+/// multiple of the limit, so that the rank waiting on the silent one directly reports
+/// first and names it.
+constexpr double kIndirectPatience = 2.0;
+
+/// Waits for `request` (nonblocking send, receive or collective) within `patience`
+/// times the liveness limit; throws StallError "<what>: no answer for N s" after it.
+void wait_alive(MPI_Request& request, const std::string& what, double patience = 1.0);
 
 /// Collectives on one communicator (not owned unless created by split()).
 /// Every function here is @note Collective on the group.
@@ -61,8 +78,9 @@ class Transport {
   int size() const { return size_; }
 
   void send(int dest, Type type, Bytes bytes);
-  /// Blocks for a message of `type` from `source` (MPI_ANY_SOURCE for any).
-  Bytes recv(Type type, int source, int* from = nullptr);
+  /// Blocks for a message of `type` from `source` (MPI_ANY_SOURCE for any), at most
+  /// the liveness limit (then StallError naming the type and source).
+  Bytes recv(Type type, int source, int* from = nullptr, double patience = 1.0);
   /// Receives a waiting message of `type`, if there is one; never blocks.
   bool try_recv(Type type, Bytes& out, int* from = nullptr, int source = MPI_ANY_SOURCE);
   /// Waits for every outstanding send.

@@ -9,13 +9,17 @@
 namespace fe2 {
 
 namespace {
-constexpr uint32_t kStateVersion = 1;
+constexpr uint32_t kStateVersion = 2;
 
 bool all_finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
 }  // namespace
 
 MicroUnit::MicroUnit(MicroModelPtr model)
-    : model_(std::move(model)), factor_kind_(model_->initial_factor_kind()) {
+    : model_(std::move(model)),
+      factor_kind_(model_->initial_factor_kind()),
+      policy_(model_->options().refresh, model_->options().N_t,
+              2.0 * static_cast<double>(model_->pattern().nonZeros())),
+      policy_committed_(policy_) {
   const int n = model_->num_dofs();
   w_ = Vec::Zero(n);
   dw1_ = Vec::Zero(n);
@@ -69,21 +73,26 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
 }
 
 bool MicroUnit::refresh_due(const proto::JobInput& in) const {
-  using R = MicroSolverOptions::Refresh;
-  if (in.force_refresh || K_factored_.empty()) return true;
-  switch (model_->options().refresh) {
-    case R::every_iteration: return true;
-    case R::fixed: return in.iteration == 1 && in.step % model_->options().N_t == 0;
-    case R::adaptive: {
-      // Ski rental: refresh once the Krylov work beyond one iteration per job, since
-      // the last refresh, has cost as much as a refresh would (flop counts, so the
-      // decision is the same on every rank and every run).
-      const double per_iteration = solve_flops_ + 2.0 * static_cast<double>(sys_.K.nonZeros());
-      const double refresh_cost = factor_flops_ + 9.0 * solve_flops_;
-      return excess_iterations_ * per_iteration >= refresh_cost;
-    }
-  }
-  return false;
+  return in.force_refresh || next_refresh(in.step, in.iteration);
+}
+
+bool MicroUnit::next_refresh(int step, int iteration) const {
+  return K_factored_.empty() || policy_.due(step, iteration);
+}
+
+size_t MicroUnit::state_bytes() const {
+  // Mirrors serialize() field by field (a test holds the two equal).
+  const size_t n = static_cast<size_t>(model_->num_dofs()), d = sizeof(double);
+  const size_t len = sizeof(uint64_t);  // each array's length prefix
+  size_t b = len + kind().size() + sizeof(uint32_t) + sizeof(uint64_t);
+  b += 2 * (len + n * d) + (len + 9 * d) + 1;             // w, δw₁, Z̄, has_pending
+  b += (len + 9 * n * d) + 1 + (len + K_factored_.size() * d);  // χ, factor kind, K
+  b += (len + n * d) + (len + 9 * d);                     // committed w, Z̄
+  b += 3 * d + sizeof(int);                               // policy, refreshes
+  b += 3 * d + sizeof(int) + 1;                           // committed policy, refreshes
+  if (refreshed_since_commit_)
+    b += (len + committed_factor_.K_factored.size() * d) + (len + 9 * n * d) + 1;
+  return b;
 }
 
 void MicroUnit::rebuild_factor() {
@@ -96,6 +105,10 @@ void MicroUnit::rebuild_factor() {
 }
 
 void MicroUnit::refresh() {
+  if (!refreshed_since_commit_) {  // keep the committed factor state for a rollback
+    committed_factor_ = {std::move(K_factored_), chi_, factor_kind_};
+    refreshed_since_commit_ = true;
+  }
   // (c1) factor K; LLᵀ falls back to LU under the automatic policy when K stops
   // being positive definite.
   K_factored_.assign(sys_.K.valuePtr(), sys_.K.valuePtr() + sys_.K.nonZeros());
@@ -133,9 +146,7 @@ void MicroUnit::refresh() {
     chi_.col(c) = x;
   }
   (void)n;
-  factor_flops_ = factor_->factor_flops();
-  solve_flops_ = factor_->solve_flops();
-  excess_iterations_ = 0.0;
+  policy_.refreshed(factor_->factor_flops(), factor_->solve_flops());
   ++refresh_count_;
 }
 
@@ -171,6 +182,12 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
     throw NumericalError(fmt::format("micro unit {}: non-finite residual or stress at step {} "
                                      "iteration {}",
                                      in.unit, in.step, in.iteration));
+  const double r_norm = sys_.r.norm();
+  const double r_ref = std::max(sys_.Pbar.norm(), model_->stress_floor()) * model_->node_scale();
+  if (!std::isfinite(r_norm) || !std::isfinite(r_ref))  // overflow: inf <= inf must not converge
+    throw NumericalError(fmt::format("micro unit {}: non-finite residual norm ({:.3e}, scale "
+                                     "{:.3e}) at step {} iteration {}",
+                                     in.unit, r_norm, r_ref, in.step, in.iteration));
 
   bool refreshed = refresh_due(in);
   if (refreshed) {
@@ -201,14 +218,18 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
         "micro unit {}: Step 1 GMRES did not converge at step {} iteration {} (residual "
         "{:.3e} after {} iterations, ‖r‖ = {:.3e})",
         in.unit, in.step, in.iteration, res.residual, res.iterations, sys_.r.norm()));
-  if (!refreshed) excess_iterations_ += std::max(0, res.iterations - 1);
+  if (!refreshed) policy_.reused(res.iterations);
   has_pending_ = true;
 
   out.A_hom = sys_.Abar - sys_.H * chi_;      // Eq. (7)
   out.P_tilde = sys_.Pbar + sys_.H * dw1_;    // Eq. (9)
+  if (!out.A_hom.allFinite() || !out.P_tilde.allFinite())
+    throw NumericalError(fmt::format("micro unit {}: non-finite homogenized tangent or condensed "
+                                     "stress at step {} iteration {}",
+                                     in.unit, in.step, in.iteration));
   out.P_bar = sys_.Pbar;
-  out.r_norm = sys_.r.norm();
-  out.r_ref = std::max(sys_.Pbar.norm(), model_->stress_floor()) * model_->node_scale();
+  out.r_norm = r_norm;
+  out.r_ref = r_ref;
   out.gmres_iterations = res.iterations;
   out.kind = refreshed ? proto::Refresh::refresh : proto::Refresh::reuse;
   out.cpu_seconds = thread_cpu_seconds() - t_start;
@@ -221,12 +242,28 @@ void MicroUnit::commit_step() {
   has_pending_ = false;
   w_committed_ = w_;
   Zbar_committed_ = Zbar_;
+  policy_committed_ = policy_;
+  refresh_count_committed_ = refresh_count_;
+  refreshed_since_commit_ = false;
+  committed_factor_ = FactorState{};
 }
 
 void MicroUnit::rollback_step() {
   has_pending_ = false;
   w_ = w_committed_;
   Zbar_ = Zbar_committed_;
+  policy_ = policy_committed_;
+  refresh_count_ = refresh_count_committed_;
+  if (refreshed_since_commit_) {
+    // Back to the committed factor: rebuilt from its matrix on the next job that reuses
+    // it (bit for bit, as after a migration), or replaced if that job refreshes.
+    K_factored_ = std::move(committed_factor_.K_factored);
+    chi_ = std::move(committed_factor_.chi);
+    factor_kind_ = committed_factor_.kind;
+    committed_factor_ = FactorState{};
+    refreshed_since_commit_ = false;
+    factor_.reset();
+  }
 }
 
 void MicroUnit::serialize(Bytes& out) const {
@@ -244,10 +281,16 @@ void MicroUnit::serialize(Bytes& out) const {
   b.put_array(K_factored_.data(), K_factored_.size());
   b.put_array(w_committed_.data(), n);
   b.put_array(Zbar_committed_.data(), 9);
-  b.put(excess_iterations_);
+  policy_.write(b);
   b.put(refresh_count_);
-  b.put(factor_flops_);
-  b.put(solve_flops_);
+  policy_committed_.write(b);
+  b.put(refresh_count_committed_);
+  b.put<uint8_t>(refreshed_since_commit_);
+  if (refreshed_since_commit_) {
+    b.put_array(committed_factor_.K_factored.data(), committed_factor_.K_factored.size());
+    b.put_array(committed_factor_.chi.data(), 9 * n);
+    b.put<uint8_t>(committed_factor_.kind == FactorKind::lu);
+  }
 }
 
 void MicroUnit::deserialize(const Bytes& in) {
@@ -270,10 +313,21 @@ void MicroUnit::deserialize(const Bytes& in) {
     throw Error("micro unit state: stored factor matrix has the wrong size");
   b.get_array_into(w_committed_.data(), n);
   b.get_array_into(Zbar_committed_.data(), 9);
-  excess_iterations_ = b.get<double>();
+  policy_.read(b);
   refresh_count_ = b.get<int>();
-  factor_flops_ = b.get<double>();
-  solve_flops_ = b.get<double>();
+  policy_committed_.read(b);
+  refresh_count_committed_ = b.get<int>();
+  refreshed_since_commit_ = b.get<uint8_t>() != 0;
+  committed_factor_ = FactorState{};
+  if (refreshed_since_commit_) {
+    committed_factor_.K_factored = b.get_array<double>();
+    if (!committed_factor_.K_factored.empty() &&
+        committed_factor_.K_factored.size() != static_cast<size_t>(sys_.K.nonZeros()))
+      throw Error("micro unit state: stored committed factor matrix has the wrong size");
+    committed_factor_.chi.resize(static_cast<Eigen::Index>(n), 9);
+    b.get_array_into(committed_factor_.chi.data(), 9 * n);
+    committed_factor_.kind = b.get<uint8_t>() ? FactorKind::lu : FactorKind::cholesky;
+  }
   if (!b.at_end()) throw Error("micro unit state: trailing bytes");
   // The factor is rebuilt from K_factored_ only if the next job reuses it: a unit
   // migrated at a refresh boundary costs no extra factorization.

@@ -15,6 +15,7 @@
 // (the coordinator accepted the iteration), with −χ(Z̄_new − Z̄_old) when Step 4 is on.
 #include "worker/MicroModel.h"
 #include "worker/PointModel.h"
+#include "worker/RefreshPolicy.h"
 #include "worker/gmres.h"
 
 namespace fe2 {
@@ -39,6 +40,8 @@ class MicroUnit final : public PointModel {
   void serialize(Bytes& out) const override;
   void deserialize(const Bytes& in) override;
   std::string kind() const override { return "micro_unit"; }
+  bool next_refresh(int step, int iteration) const override;
+  size_t state_bytes() const override;
 
   /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern).
   void assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const;
@@ -50,6 +53,7 @@ class MicroUnit final : public PointModel {
   const Eigen::MatrixXd& chi() const { return chi_; }
   const System& system() const { return sys_; }
   int refresh_count() const { return refresh_count_; }
+  const RefreshPolicy& policy() const { return policy_; }
   FactorKind factor_kind() const { return factor_kind_; }
   const SparseFactor* factor() const { return factor_.get(); }
 
@@ -70,10 +74,20 @@ class MicroUnit final : public PointModel {
   FactorKind factor_kind_;
   Vec w_committed_;
   Vec9 Zbar_committed_ = Vec9::Zero();
-  double excess_iterations_ = 0.0;  ///< adaptive policy: GMRES iterations beyond one since refresh
+  RefreshPolicy policy_;            ///< when to refactor (its counters are state)
   int refresh_count_ = 0;
-  double factor_flops_ = 0.0;       ///< of the last refresh (adaptive policy's cost model)
-  double solve_flops_ = 0.0;
+  /// The factor state at the last commit, kept only once a refresh inside the current
+  /// step has replaced it: a rolled-back step's retry then starts from exactly the
+  /// committed unit (not from a factor and χ of a failed, perhaps inverted, iterate).
+  struct FactorState {
+    std::vector<double> K_factored;
+    Eigen::MatrixXd chi;
+    FactorKind kind = FactorKind::cholesky;
+  };
+  bool refreshed_since_commit_ = false;
+  FactorState committed_factor_;    ///< valid while refreshed_since_commit_
+  RefreshPolicy policy_committed_;
+  int refresh_count_committed_ = 0;
   // --- workspace ---
   System sys_;
   std::unique_ptr<SparseFactor> factor_;

@@ -78,7 +78,7 @@ bool PullClient::poll(bool block) {
   const double w0 = wall_seconds();
   bool got = transport_.try_recv(proto::Type::batch, b, &from);
   if (!got && block) {
-    b = transport_.recv(proto::Type::batch, MPI_ANY_SOURCE, &from);
+    b = transport_.recv(proto::Type::batch, MPI_ANY_SOURCE, &from, proto::kIndirectPatience);
     got = true;
   }
   stats_.wait_wall += wall_seconds() - w0;

@@ -2,27 +2,67 @@
 
 #include "common/error.h"
 
+#include <algorithm>
+#include <csignal>
 #include <cstdlib>
 #include <string>
 
 namespace fe2 {
 
+UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
+  Fault fault;
+  auto bad = [&](const std::string& what) {
+    throw InputError(fmt::format("FE2HEART_FAULT='{}': {}; expected "
+                                 "unit=K[,step=S][,kind=numerical|fatal|stall] with integers K, S >= 0",
+                                 value, what));
+  };
+  auto integer = [&](const std::string& key, const std::string& v) {
+    size_t used = 0;
+    int x = -1;
+    try {
+      x = std::stoi(v, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (v.empty() || used != v.size() || x < 0)
+      bad(fmt::format("{}={} is not a non-negative integer", key, v));
+    return x;
+  };
+  bool has_unit = false;
+  size_t at = 0;
+  while (at <= value.size()) {
+    const size_t comma = std::min(value.find(',', at), value.size());
+    const std::string item = value.substr(at, comma - at);
+    at = comma + 1;
+    const size_t eq = item.find('=');
+    if (eq == std::string::npos) bad(fmt::format("field '{}' has no '='", item));
+    const std::string key = item.substr(0, eq), v = item.substr(eq + 1);
+    if (key == "unit") {
+      fault.unit = integer(key, v);
+      has_unit = true;
+    } else if (key == "step") {
+      fault.step = integer(key, v);
+    } else if (key == "kind") {
+      if (v != "numerical" && v != "fatal" && v != "stall")
+        bad(fmt::format("unknown kind '{}' (kinds: numerical, fatal, stall)", v));
+      fault.fatal = v == "fatal";
+      fault.stall = v == "stall";
+    } else {
+      bad(fmt::format("unknown field '{}' (fields: unit, step, kind)", key));
+    }
+  }
+  if (!has_unit) bad("no unit=K field");
+  return fault;
+}
+
+UnitStore::Fault UnitStore::fault_from_env() {
+  const char* f = std::getenv("FE2HEART_FAULT");
+  return f ? parse_fault(f) : Fault{};
+}
+
 UnitStore::UnitStore(const std::vector<PointModelSpec>& models, const std::vector<int>& model_of_unit)
     : models_(models), model_of_unit_(model_of_unit) {
-  // Test hook: FE2HEART_FAULT="unit=K,step=S,kind=numerical|fatal" makes unit K fail
-  // from step S on, wherever it lives (the failure-handling tests use it).
-  if (const char* f = std::getenv("FE2HEART_FAULT")) {
-    const std::string s(f);
-    auto field = [&](const std::string& key) -> std::string {
-      const auto at = s.find(key + "=");
-      if (at == std::string::npos) return "";
-      const auto end = s.find(',', at);
-      return s.substr(at + key.size() + 1, end == std::string::npos ? std::string::npos : end - at - key.size() - 1);
-    };
-    if (!field("unit").empty()) fault_.unit = std::stoi(field("unit"));
-    if (!field("step").empty()) fault_.step = std::stoi(field("step"));
-    fault_.fatal = field("kind") == "fatal";
-  }
+  fault_ = fault_from_env();
 }
 
 std::vector<int> UnitStore::units() const {
@@ -40,6 +80,7 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
   auto it = units_.find(job.unit);
   FE2_CHECK(it != units_.end(), "job for unit {} which does not live here", job.unit);
   if (job.unit == fault_.unit && job.step >= fault_.step) {
+    if (fault_.stall) std::raise(SIGSTOP);  // freeze this rank, as `kill -STOP` does
     if (fault_.fatal)
       throw Error(fmt::format("unit {}: injected fatal fault (FE2HEART_FAULT)", job.unit));
     proto::JobOutput out;
@@ -49,7 +90,16 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
     return out;
   }
   try {
-    return it->second->iterate(job);
+    proto::JobOutput out = it->second->iterate(job);
+    // What the scheduler needs to plan moves, from the point itself (its policy and
+    // its state), for each job that can follow this one.
+    const PointModel& p = *it->second;
+    out.next_refresh = static_cast<uint8_t>(
+        (p.next_refresh(job.step, job.iteration + 1) ? proto::next_iteration : 0) |
+        (p.next_refresh(job.step, 1) ? proto::restart_step : 0) |
+        (p.next_refresh(job.step + 1, 1) ? proto::next_step : 0));
+    out.state_bytes = p.state_bytes();
+    return out;
   } catch (const NumericalError& e) {
     proto::JobOutput out;
     out.unit = job.unit;

@@ -31,14 +31,23 @@ class UnitStore {
   /// Rebuilds a unit that arrives from another rank.
   void put(int unit, const Bytes& state);
 
+  /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall]": unit K fails
+  /// from step S on, wherever it lives. A malformed value is an InputError naming the
+  /// variable and the value (a typo must not silently test nothing).
+  struct Fault {
+    int unit = -1, step = 0;
+    bool fatal = false;
+    bool stall = false;  ///< freeze the process (SIGSTOP): the liveness tests
+  };
+  static Fault parse_fault(const std::string& value);
+  /// The hook as set in the environment (unit -1: none).
+  static Fault fault_from_env();
+
  private:
   const std::vector<PointModelSpec>& models_;
   const std::vector<int>& model_of_unit_;
   std::map<int, PointModelPtr> units_;
-  struct Fault {
-    int unit = -1, step = 0;
-    bool fatal = false;
-  } fault_;
+  Fault fault_;
 };
 
 }  // namespace fe2

@@ -16,7 +16,8 @@ void run_worker_loop(proto::Transport& transport, UnitStore& store,
                      const std::vector<int>& coordinator_of_unit, int batch) {
   PullClient client(transport, store, batch);
   for (;;) {
-    const proto::Control c = proto::Control::unpack(transport.recv(proto::Type::control, 0));
+    const proto::Control c = proto::Control::unpack(
+        transport.recv(proto::Type::control, 0, nullptr, proto::kIndirectPatience));
     switch (c.command) {
       case proto::Command::iterate: {
         client.begin(coordinators_of(store, coordinator_of_unit), c.step, c.iteration);

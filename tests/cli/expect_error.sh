@@ -3,7 +3,7 @@
 #
 #   expect_error.sh [--absent PATH] EXPECTED_EXIT REGEX -- command args...
 #
-# Passes (exit 0) when the command, run under `timeout 60`,
+# Passes (exit 0) when the command, run under `timeout ${EXPECT_TIMEOUT:-60}`,
 #   - exits with EXPECTED_EXIT (0 for a command that must succeed), and
 #   - its combined stdout+stderr matches the extended regular expression REGEX (grep -E),
 #   - and, with --absent PATH, PATH does not exist afterwards (a refused `run --out PATH`
@@ -34,7 +34,7 @@ shift 3
 
 [[ -n "$absent" ]] && rm -rf -- "$absent"
 
-output="$(timeout 60 "$@" 2>&1)"
+output="$(timeout "${EXPECT_TIMEOUT:-60}" "$@" 2>&1)"
 rc=$?
 
 echo "---- command: $*"
@@ -46,7 +46,7 @@ echo "----"
 failures=()
 if [[ $rc -ge 124 ]]; then
   case $rc in
-    124) why="timed out after 60 s" ;;
+    124) why="timed out after ${EXPECT_TIMEOUT:-60} s" ;;
     125) why="timeout itself failed" ;;
     126) why="command found but not executable" ;;
     127) why="command not found" ;;

@@ -1,0 +1,11 @@
+# Numerical failure is detected, named and handled (issue 7 items 5, 6): non-finite
+# values cut the step back and then stop saying "non-finite" (exit 3), never "invalid
+# job"; an under-constrained body is reported as a singular macro matrix, not as an
+# inverted element. Specs in tests/data/numerics/ (see their "title").
+set(FE2_NUMERICS ${PROJECT_SOURCE_DIR}/tests/data/numerics)
+fe2_cli_test(cli.numerics.newmark_overflowing_rates 3
+             "cutting the step.*failed after 2 cutbacks: non-finite macro displacement gradient"
+             ARGS run ${FE2_NUMERICS}/newmark_tiny_step.json --out ${FE2_CLI_OUT}/numerics_newmark --overwrite)
+fe2_cli_test(cli.numerics.under_constrained_is_singular 3
+             "failed after 1 cutbacks: the macro matrix is singular: MUMPS found [1-9][0-9]* null pivot.*rigid-body"
+             ARGS run ${FE2_NUMERICS}/under_constrained.json --out ${FE2_CLI_OUT}/numerics_singular --overwrite)
