@@ -2,19 +2,81 @@
 
 #include "common/io/atomic_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 namespace fe2 {
 
+namespace fs = std::filesystem;
+
+bool is_run_output_file(const std::string& name) {
+  // Keep in step with what RunOutput, Trace and tools/trace_plot.py write.
+  static const std::regex own(
+      "(summary\\.json|spec\\.json|fe2heart\\.log|displacement\\.pvd|displacement_[0-9]+\\.vtu|"
+      "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png)"
+      "(\\.tmp)?");
+  return std::regex_match(name, own);
+}
+
+std::vector<std::string> run_output_files(const std::string& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return names;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (e.is_regular_file(ec) && is_run_output_file(name)) names.push_back(name);
+  }
+  if (ec)
+    throw InputError(fmt::format("--out '{}': cannot list the output folder ({})", dir, ec.message()));
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void check_output_folder(const std::string& dir, bool overwrite) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(fmt::format("--out '{}' exists and is not a folder; expected a folder for the "
+                                 "run's output (new, empty, or an earlier run with --overwrite)",
+                                 dir));
+  const std::vector<std::string> earlier = run_output_files(dir);
+  if (earlier.empty() || overwrite) return;
+  const std::size_t shown = std::min<std::size_t>(earlier.size(), 4);
+  throw InputError(fmt::format(
+      "--out '{}' already holds an fe2heart run ({} file{}: {}{}); use --overwrite to replace "
+      "it, or another --out",
+      dir, earlier.size(), earlier.size() == 1 ? "" : "s", fmt::join(earlier.begin(), earlier.begin() + shown, ", "),
+      earlier.size() > shown ? ", ..." : ""));
+}
+
 RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
   std::error_code ec;
-  std::filesystem::create_directories(dir_, ec);
-  if (ec || !std::filesystem::is_directory(dir_))
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_))
     throw InputError(fmt::format("--out '{}': cannot create the output folder ({})", dir_,
                                  ec.message()));
+  // No stale VTU of steps this run never reaches may sit beside its own.
+  for (const std::string& name : run_output_files(dir_)) {
+    fs::remove(fs::path(dir_) / name, ec);
+    if (ec)
+      throw InputError(fmt::format("--out '{}': cannot remove '{}' of the earlier run ({})", dir_,
+                                   name, ec.message()));
+  }
   write_file_atomically(dir_ + "/spec.json", spec.raw.dump(2) + "\n");
   if (spec.write_vtu) pvd_ = std::make_unique<PvdWriter>(pvd_path());
+  // Before the first step: the summary of a run killed during it says so.
+  json s;
+  s["title"] = spec.title;
+  s["complete"] = false;
+  s["converged"] = false;
+  s["steps"] = 0;
+  s["newton_iterations"] = 0;
+  json probes = json::object();
+  for (const auto& [name, X] : spec.probes) probes[name] = {X[0], X[1], X[2]};
+  s["probes"] = probes;
+  s["history"] = json::array();
+  write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }
 
 std::string RunOutput::pvd_path() const { return dir_ + "/displacement.pvd"; }
@@ -44,15 +106,29 @@ void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, 
   cell.add_scalar("region", region);
   cell.add_scalar("model", model);
   cell.add_vector("fibre", fibre);
-  const std::string name = fmt::format("displacement_{:05d}.vtu", step);
-  write_vtu(dir_ + "/" + name, mesh, point, cell);
-  pvd_->add(time, name);
+  // The path as written (relative to the working directory or absolute); the PVD
+  // stores it relative to itself.
+  const std::string path = dir_ + "/" + fmt::format("displacement_{:05d}.vtu", step);
+  write_vtu(path, mesh, point, cell);
+  pvd_->add(time, path);
+}
+
+void RunOutput::write_progress(const Simulation& sim, const StepRecord& step, double wall) {
+  progress_.history.push_back(step);
+  progress_.steps = step.step + 1;
+  progress_.newton_iterations += step.iterations;
+  write(sim, progress_, wall, false);
 }
 
 void RunOutput::write_summary(const Simulation& sim, const RunResult& r, double wall) {
+  write(sim, r, wall, true);
+}
+
+void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bool complete) {
   json s;
   s["title"] = sim.spec().title;
-  s["converged"] = r.converged;
+  s["complete"] = complete;
+  s["converged"] = complete && r.converged;
   s["steps"] = r.steps;
   s["newton_iterations"] = r.newton_iterations;
   if (!r.error.empty()) s["error"] = r.error;
@@ -86,7 +162,7 @@ void RunOutput::write_summary(const Simulation& sim, const RunResult& r, double 
   s["micro_cpu_seconds"] = micro_cpu;
   s["wall_seconds"] = wall;
   s["points"] = sim.spec().mesh.num_tets();
-  if (pvd_) s["fields"] = std::filesystem::path(pvd_path()).filename().string();
+  if (pvd_) s["fields"] = fs::path(pvd_path()).filename().string();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }
 

@@ -1,32 +1,61 @@
 #pragma once
 // What a run leaves in its output folder: the spec it ran, a log, the displacement
 // field and per-element stresses as VTU files collected in a PVD (ParaView), and
-// summary.json (converged, steps, newton_iterations, probes, per-step history).
-// Files are written whole or not at all (write to a temporary name, then rename).
+// summary.json (complete, converged, steps, newton_iterations, probes, per-step
+// history). Files are written whole or not at all (write to a temporary name, then
+// rename), and summary.json is rewritten after every step, so a killed run still
+// leaves a readable summary of the steps it finished ("complete": false).
 #include "coordinator/Simulation.h"
 
 #include "common/io/vtu_writer.h"
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace fe2 {
 
+/// Whether `name` (a file name, no folder) is one of the files a run or `fe2heart
+/// trace plot` writes into a run folder (summary.json, spec.json, fe2heart.log,
+/// displacement.pvd, displacement_NNNNN.vtu, trace_*.jsonl, the trace PNGs, and the
+/// ".tmp" names they are written under).
+bool is_run_output_file(const std::string& name);
+
+/// The run-output files in `dir` (sorted names; empty if `dir` does not exist).
+std::vector<std::string> run_output_files(const std::string& dir);
+
+/// Refuses an output folder that holds an earlier run: "different run" means any
+/// file of is_run_output_file() in it, since a rerun would mix its files with stale
+/// ones (e.g. VTUs of steps it never reaches). Without `overwrite` that is an
+/// InputError naming the folder and the remedy (--overwrite or another --out); a
+/// missing folder, an empty one, or one holding only other files is fine. Writes
+/// and removes nothing: RunOutput removes the earlier run's files once every rank
+/// has agreed to start. Also an InputError if `dir` exists but is not a folder.
+void check_output_folder(const std::string& dir, bool overwrite);
+
 class RunOutput {
  public:
-  /// Creates `dir` (InputError if it cannot) and copies the spec into it.
+  /// Creates `dir` (InputError if it cannot), removes the files of an earlier run
+  /// from it (check_output_folder() has allowed that; other files are left alone),
+  /// copies the spec into it and writes an incomplete summary.json.
   RunOutput(const std::string& dir, const RunSpec& spec);
   /// Writes the fields of the current state as step `step` (VTU + PVD entry); `P` is
   /// Simulation::gather_point_stress() (collective, so the caller gathers).
   void write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step, double time);
-  /// summary.json; `sim` gives probe positions at the final state.
+  /// After each accepted step: rewrites summary.json with "complete": false and the
+  /// steps so far (probes at the current state).
+  void write_progress(const Simulation& sim, const StepRecord& step, double wall_seconds);
+  /// At the end, converged or not: summary.json with "complete": true; `sim` gives
+  /// probe positions at the final state.
   void write_summary(const Simulation& sim, const RunResult& result, double wall_seconds);
   const std::string& dir() const { return dir_; }
   std::string pvd_path() const;
 
  private:
+  void write(const Simulation& sim, const RunResult& result, double wall_seconds, bool complete);
   std::string dir_;
   std::unique_ptr<PvdWriter> pvd_;
+  RunResult progress_;  ///< the steps so far, for write_progress
 };
 
 }  // namespace fe2

@@ -11,7 +11,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 bin=$top/build/tools/fe2heart
 for r in $(seq 1 "$repeat"); do
   for np in 1 2; do
-    mpirun -np "$np" "$bin" run "$top/configs/farm_beam.json" --out "$out/np$np.r$r" --log-level warn
+    mpirun -np "$np" "$bin" run "$top/configs/farm_beam.json" --out "$out/np$np.r$r" --overwrite --log-level warn
     "$bin" trace summary "$out/np$np.r$r" --json > "$out/np$np.r$r/trace_summary.json"
   done
 done

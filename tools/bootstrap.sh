@@ -10,7 +10,7 @@ cd "$top"
 
 packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev libeigen3-dev
           libsuitesparse-dev libopenblas-dev libmumps-dev libmetis-dev libspdlog-dev nlohmann-json3-dev
-          libcli11-dev libgtest-dev python3-matplotlib)
+          libcli11-dev libgtest-dev python3-matplotlib python3-meshio)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,7 +32,7 @@ cmake --build build -j"$jobs"
 
 if [[ $mode == demo ]]; then
   out="$top/out/fe2_beam"
-  ./build/tools/fe2heart run configs/fe2_beam.json --out "$out"
+  ./build/tools/fe2heart run configs/fe2_beam.json --out "$out" --overwrite
   echo
   echo "results: $out/summary.json"
   echo "fields:  $out/displacement.pvd (open in ParaView; Warp By Vector 'displacement')"

@@ -1,6 +1,7 @@
 // `fe2heart run`: every rank reads the spec; ranks agree on protocol and spec; the
 // first n_c ranks coordinate (macro problem, MUMPS), the worker ranks hold units.
 #include "common/cpu_timer.h"
+#include "common/io/atomic_file.h"
 #include "coordinator/FarmEvaluator.h"
 #include "coordinator/FarmLayout.h"
 #include "coordinator/RunOutput.h"
@@ -12,6 +13,9 @@
 
 #include <spdlog/sinks/basic_file_sink.h>
 #include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <ctime>
 
 namespace fe2::cli {
 
@@ -60,6 +64,19 @@ void check_ranks_agree(const proto::Group& world, const RunSpec& spec) {
     throw InputError(std::string(reinterpret_cast<const char*>(verdict.data()), verdict.size()));
 }
 
+/// A fatal error as a log line, for ranks without the file sink.
+std::string fatal_log_line(int rank, const std::string& what) {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  std::tm local{};
+  localtime_r(&t, &local);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M:%S", &local);
+  return fmt::format("[{}.{:03d}] [critical] rank {}: {}; stopping every rank", stamp,
+                     static_cast<int>(ms), rank, what);
+}
+
 std::string format_duration(double s) {
   if (s < 120) return fmt::format("{:.1f} s", s);
   if (s < 7200) return fmt::format("{:.1f} min", s / 60);
@@ -87,6 +104,7 @@ int run(const RunOptions& o) {
   const int rank = world.rank();
   // Input errors surface here identically on every rank: all exit 2, none hangs.
   RunSpec spec = read_run_spec_file(o.spec);
+  if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
   if (!o.policy.empty())
     spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
                        : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
@@ -109,6 +127,7 @@ int run(const RunOptions& o) {
   }
 
   // From here on a failure on one rank must end every rank: no one may wait forever.
+  bool log_open = false;  // rank 0's file sink is in place
   try {
     if (!coordinator) {
       run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch);
@@ -121,6 +140,9 @@ int run(const RunOptions& o) {
       trace = std::make_unique<Trace>(o.out);
       auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
       spdlog::default_logger()->sinks().push_back(sink);
+      // Line by line: a killed or aborted run keeps its log up to the last line.
+      spdlog::default_logger()->flush_on(spdlog::level::trace);
+      log_open = true;
       spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
       spdlog::info("{}", describe(spec));
       spdlog::info("{} ranks: {} coordinator(s), {} worker rank(s), policy {}", layout.ranks,
@@ -149,6 +171,7 @@ int run(const RunOptions& o) {
                        format_duration(elapsed), format_duration(remaining));
           if ((r.step + 1) % spec.output_every == 0 || r.step + 1 == spec.steps)
             write_fields(r.step + 1, r.time);
+          if (output) output->write_progress(sim, r, wall_seconds() - t0);
         },
         [&](IterationTiming t) {
           if (!trace) return;
@@ -176,6 +199,9 @@ int run(const RunOptions& o) {
   } catch (const std::exception& e) {
     spdlog::critical("rank {}: {}; stopping every rank", rank, e.what());
     spdlog::default_logger()->flush();
+    // The log must hold every rank's last words, not only rank 0's (best effort: the
+    // folder may not exist yet, or not on this node).
+    if (!log_open) append_line(o.out + "/fe2heart.log", fatal_log_line(rank, e.what()));
     transport.abort(dynamic_cast<const Error*>(&e) ? dynamic_cast<const Error*>(&e)->exit_code() : 1);
   }
 }

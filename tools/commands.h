@@ -11,6 +11,7 @@ struct RunOptions {
   std::string out;
   int coordinators = 0;  ///< 0: from the spec
   std::string policy;    ///< empty: from the spec
+  bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
 };
 int run(const RunOptions& o);
 int validate(const std::string& spec);

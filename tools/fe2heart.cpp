@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000000));
   c_run->add_option("--policy", run.policy, "unit placement (overrides farm.policy)")
       ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
+  c_run->add_flag("--overwrite", run.overwrite,
+                  "replace an earlier run in the --out folder (its files only; without this "
+                  "flag such a folder is refused)");
 
   std::string validate_spec;
   auto* c_validate = app.add_subcommand("validate", "check a run or unit spec and its meshes");

@@ -2,6 +2,9 @@
 
 #include "common/error.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +30,20 @@ void write_file_atomically(const std::string& path, std::string_view content) {
   if (ec) {
     std::remove(tmp.c_str());
     throw Error(fmt::format("cannot rename '{}' to '{}': {}", tmp, path, ec.message()));
+  }
+}
+
+bool append_line(const std::string& path, std::string_view line) noexcept {
+  try {
+    std::string text(line);
+    text += '\n';
+    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) return false;
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    ::close(fd);
+    return n == static_cast<ssize_t>(text.size());
+  } catch (...) {
+    return false;
   }
 }
 

@@ -131,8 +131,10 @@ void write_vtu(const std::string& path, const HexMesh& mesh, const VtuFields& po
 PvdWriter::PvdWriter(std::string pvd_path) : path_(std::move(pvd_path)) { write(); }
 
 void PvdWriter::add(double time, const std::string& vtu_path) {
-  const fs::path dir = fs::absolute(path_).parent_path();
-  steps_.emplace_back(time, fs::absolute(vtu_path).lexically_relative(dir).generic_string());
+  // Both paths as the caller opens them (relative to the working directory); ParaView
+  // resolves a PVD's file attributes against the PVD's own folder.
+  const fs::path dir = fs::absolute(path_).lexically_normal().parent_path();
+  steps_.emplace_back(time, fs::absolute(vtu_path).lexically_normal().lexically_relative(dir).generic_string());
   write();
 }
 

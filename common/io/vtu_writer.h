@@ -52,8 +52,10 @@ class PvdWriter {
   /// Writes an empty collection at once, so a bad output path fails early.
   explicit PvdWriter(std::string pvd_path);
 
-  /// Appends the step (time, vtu_path) and rewrites the .pvd. The VTU path is stored
-  /// relative to the .pvd's directory, so the output folder can be moved.
+  /// Appends the step (time, vtu_path) and rewrites the .pvd. `vtu_path` is a path as
+  /// the caller would open it (absolute, or relative to the working directory, like
+  /// the .pvd path), not a bare name; it is stored relative to the .pvd's folder, so
+  /// the series opens from anywhere and the output folder can be moved.
   void add(double time, const std::string& vtu_path);
 
   const std::string& path() const { return path_; }

@@ -1,0 +1,90 @@
+// Issue 7, item 10: which files make a folder "an earlier run", and what --overwrite
+// removes (only fe2heart's files, never the user's).
+#include "coordinator/RunOutput.h"
+
+#include "common/error.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fe2 {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Scratch {
+ public:
+  Scratch() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / fmt::format("fe2_{}_{}", info->name(), getpid());
+    fs::remove_all(path_);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string str() const { return path_.string(); }
+  void touch(const std::string& name) const {
+    fs::create_directories(path_);
+    std::ofstream(path_ / name) << "x\n";
+  }
+  bool has(const std::string& name) const { return fs::exists(path_ / name); }
+
+ private:
+  fs::path path_;
+};
+
+std::string refusal(const std::string& dir, bool overwrite) {
+  try {
+    check_output_folder(dir, overwrite);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RunOutput, RunFilesAreRecognizedByName) {
+  for (const char* own : {"summary.json", "spec.json", "fe2heart.log", "displacement.pvd",
+                          "displacement_00000.vtu", "displacement_12345.vtu", "trace_units.jsonl",
+                          "trace_iterations.jsonl", "summary.json.tmp", "gantt.png", "imbalance.png"})
+    EXPECT_TRUE(is_run_output_file(own)) << own;
+  for (const char* other : {"notes.txt", "my_summary.json", "displacement_x.vtu", "mesh.vtu",
+                            "spec.json.bak", "fe2heart.log.1", "heart.msh", "plot.png"})
+    EXPECT_FALSE(is_run_output_file(other)) << other;
+}
+
+TEST(RunOutput, MissingEmptyOrForeignFolderIsAccepted) {
+  const Scratch dir;
+  EXPECT_EQ(refusal(dir.str(), false), "");  // does not exist
+  fs::create_directories(dir.str());
+  EXPECT_EQ(refusal(dir.str(), false), "");  // empty
+  dir.touch("notes.txt");
+  EXPECT_EQ(refusal(dir.str(), false), "");  // only the user's files
+}
+
+TEST(RunOutput, EarlierRunIsRefusedWithoutOverwriteAndNothingIsRemoved) {
+  const Scratch dir;
+  dir.touch("notes.txt");
+  dir.touch("displacement_00099.vtu");
+  const std::string msg = refusal(dir.str(), false);
+  EXPECT_NE(msg.find("--out '" + dir.str() + "' already holds an fe2heart run (1 file: "
+                     "displacement_00099.vtu); use --overwrite to replace it, or another --out"),
+            std::string::npos)
+      << msg;
+  EXPECT_EQ(refusal(dir.str(), true), "");
+  EXPECT_TRUE(dir.has("displacement_00099.vtu"));  // the check itself removes nothing
+}
+
+TEST(RunOutput, AFileInsteadOfAFolderIsRefused) {
+  const Scratch dir;
+  dir.touch("summary.json");
+  const std::string file = dir.str() + "/summary.json";
+  EXPECT_NE(refusal(file, true).find("--out '" + file + "' exists and is not a folder"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace fe2
