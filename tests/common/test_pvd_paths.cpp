@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 
 namespace fe2 {
 namespace {
@@ -25,7 +26,7 @@ std::string slurp(const fs::path& p) {
 class InScratchDir {
  public:
   InScratchDir() : old_(fs::current_path()) {
-    path_ = fs::temp_directory_path() / fmt::format("fe2_pvd_paths_{}", getpid());
+    path_ = fs::temp_directory_path() / ("fe2_pvd_paths_" + std::to_string(getpid()));
     fs::remove_all(path_);
     fs::create_directories(path_ / "a" / "b");
     fs::current_path(path_);
