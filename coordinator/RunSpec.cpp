@@ -5,6 +5,7 @@
 #include "common/mesh/box_mesh.h"
 #include "common/mesh/gmsh_reader.h"
 #include "common/mesh/point_locator.h"
+#include "common/spec/spec_schemas.h"
 
 #include <cmath>
 #include <filesystem>
@@ -155,7 +156,12 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
     node.fail(key, "the name of a model in /models" +
                        (guess.empty() ? std::string() : "; did you mean \"" + guess + "\"?"));
   };
-  const std::string def = assign.string("default", names.front(), "model of every element");
+  // The default model depends on the spec (its first model), so the key has none.
+  const std::string def =
+      assign.has("default")
+          ? assign.string("default", std::nullopt,
+                          "model of every element not in 'regions' (default: the first model)")
+          : names.front();
   spec.default_model = index_of(assign, "default", def);
   SpecNode regions = assign.child("regions", false, "region tag -> model name");
   for (auto it = regions.raw().begin(); it != regions.raw().end(); ++it) {
@@ -185,7 +191,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   spec.raw = j;
   spec.base_dir = file.empty() ? "." : std::filesystem::path(file).parent_path().string();
   if (spec.base_dir.empty()) spec.base_dir = ".";
-  SpecNode root(j, "", doc);
+  SpecNode root(j, "", doc, &run_spec_schema());
   spec.title = root.string("title", "", "one line saying what this scene solves");
   root.string("description", "", "what the scene shows and how to view it");
   read_mesh(root.child("mesh", true, "macro mesh"), spec);
@@ -193,7 +199,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   read_models(root.child("models", true, "point models by name"),
               root.child("assign", false, "which model each element uses"), spec);
 
-  for (auto& d : root.children("dirichlet", false, "prescribed displacements on node sets")) {
+  for (auto& d : root.children("dirichlet", true, "prescribed displacements on node sets")) {
     DirichletSpec ds;
     ds.set = d.string("set", std::nullopt, "named node set or face");
     if (!spec.mesh.node_sets.count(ds.set)) {

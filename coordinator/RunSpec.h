@@ -1,7 +1,7 @@
 #pragma once
 // A run spec (`fe2heart run SPEC.json`), read and checked in one place: every key is
-// declared with its default, range and help (common/spec/SpecNode.h), so the same code
-// validates (`fe2heart validate`) and documents (`fe2heart spec-doc`).
+// declared once in the spec schema (common/spec/spec_schemas.cpp), which this reader is
+// checked against and `fe2heart spec-doc` and `spec-schema` print.
 //
 // A scene names its effects; an effect that is off allocates and assembles nothing:
 //   point models (FE² units or the macro law, per region), Dirichlet conditions,
@@ -88,7 +88,7 @@ struct RunSpec {
 };
 
 /// Reads and checks a spec; every problem is an InputError naming the key.
-/// `doc`, if given, collects the declarations (for spec-doc).
+/// Every key read is checked against run_spec_schema(); `doc`, if given, records those read.
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
 RunSpec read_run_spec_file(const std::string& file);
 

@@ -9,43 +9,6 @@
 
 namespace fe2::cli {
 
-UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc) {
-  UnitSpec u;
-  std::string base = std::filesystem::path(file).parent_path().string();
-  SpecNode root(j, "", doc);
-  root.string("title", "", "what this unit exploration shows");
-  root.string("description", "", "longer notes");
-  u.model = MicroModel::from_spec(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);
-  const bool one = root.has("Zbar"), path = root.has("Zbar_path");
-  if (one == path)
-    root.fail(one ? "Zbar_path" : "Zbar",
-              "exactly one of 'Zbar' (9 numbers) or 'Zbar_path' (an array of 9-number arrays)");
-  if (one) {
-    const auto z = root.numbers("Zbar", 9, std::nullopt, "macro displacement gradient, column-major");
-    u.path.push_back(Eigen::Map<const Vec9>(z.data()));
-  } else {
-    const json* arr = root.declared_value("Zbar_path", "array of 9-number arrays",
-                                          "macro gradients to equilibrate in turn");
-    const std::string what = "a non-empty array of arrays of 9 finite numbers";
-    if (!arr->is_array() || arr->empty()) root.fail("Zbar_path", what);
-    for (const auto& z : *arr) {
-      if (!z.is_array() || z.size() != 9) root.fail("Zbar_path", what);
-      Vec9 v;
-      for (int i = 0; i < 9; ++i) {
-        if (!z[i].is_number() || !std::isfinite(z[i].get<double>())) root.fail("Zbar_path", what);
-        v[i] = z[i].get<double>();
-      }
-      u.path.push_back(v);
-    }
-  }
-  SpecNode n = root.child("newton", false, "unit Newton iterations");
-  u.rtol = n.number("rtol", 1e-10, Range{0.0, 1.0, true, true}, "‖r‖ / r_ref to reach");
-  u.max_iterations = n.integer("max_iterations", 30, Range::closed(1, 1000), "iteration cap");
-  n.finish();
-  root.finish();
-  return u;
-}
-
 int unit(const UnitOptions& o) {
   const UnitSpec spec = read_unit_spec(read_json_file(o.spec), o.spec);
   MicroUnit unit(spec.model);

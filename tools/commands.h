@@ -30,8 +30,10 @@ struct BenchOptions {
 };
 int bench_unit(const BenchOptions& o);
 
-/// Every key the given specs declare: type, default or "required", range, help.
-int spec_doc(const std::vector<std::string>& specs);
+/// Every spec key (from the schema): type, default or "required", range, help.
+int spec_doc();
+/// JSON Schema 2020-12 of a run spec, or of a unit spec with `unit`.
+int spec_schema(bool unit);
 
 int trace_summary(const std::string& dir, bool as_json);
 int trace_plot(const std::string& dir, const std::string& out);

@@ -41,10 +41,12 @@ int main(int argc, char** argv) {
   c_unit->add_option("spec", unit.spec, "unit spec (JSON)")->required();
   c_unit->add_option("--vtu", unit.vtu, "also write the equilibrated unit as VTU");
 
-  std::vector<std::string> doc_specs;
   auto* c_doc = app.add_subcommand("spec-doc", "every spec key with its type, default, range and "
-                                               "help, from the reader's own declarations");
-  c_doc->add_option("specs", doc_specs, "specs to read (default: the shipped configs)");
+                                               "help, from the spec schema the reader checks");
+  bool schema_unit = false;
+  auto* c_schema = app.add_subcommand("spec-schema", "the spec schema as JSON Schema 2020-12 "
+                                                     "(for editors and validators)");
+  c_schema->add_flag("--unit", schema_unit, "the schema of unit specs (default: run specs)");
 
   fe2::cli::BenchOptions bench;
   auto* c_bench = app.add_subcommand("bench", "benchmarks that print figures (not tests)");
@@ -118,7 +120,8 @@ int main(int argc, char** argv) {
     else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);
-    else if (*c_doc) rc = fe2::cli::spec_doc(doc_specs);
+    else if (*c_doc) rc = fe2::cli::spec_doc();
+    else if (*c_schema) rc = fe2::cli::spec_schema(schema_unit);
   } catch (const fe2::Error& e) {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -16,7 +16,7 @@ struct UnitSpec {
   int max_iterations = 30;
 };
 
-/// `doc`, if given, collects the key declarations (spec-doc).
+/// Keys are checked against unit_spec_schema(); `doc`, if given, records those read.
 UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
 
 }  // namespace fe2::cli

@@ -1,5 +1,7 @@
 #include "common/spec/SpecNode.h"
 
+#include "common/spec/SchemaNode.h"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -30,12 +32,6 @@ size_t edit_distance(const std::string& a, const std::string& b) {
     std::swap(prev, cur);
   }
   return prev[b.size()];
-}
-
-template <class T>
-std::string show_default(const std::optional<T>& def) {
-  if (!def) return "required";
-  return "default " + json(*def).dump();
 }
 
 }  // namespace
@@ -71,8 +67,8 @@ const json& SpecNode::empty_object() {
   return e;
 }
 
-SpecNode::SpecNode(const json& j, std::string path, SpecDoc* doc)
-    : j_(&j), path_(std::move(path)), doc_(doc) {
+SpecNode::SpecNode(const json& j, std::string path, SpecDoc* doc, const SchemaNode* schema)
+    : j_(&j), path_(std::move(path)), doc_(doc), schema_(schema) {
   if (!j.is_object())
     throw InputError(fmt::format("{}: got {}, expected an object", path_.empty() ? "/" : path_,
                                  show(j)));
@@ -87,10 +83,21 @@ const json* SpecNode::lookup(const std::string& key) const {
   return it == j_->end() ? nullptr : &*it;
 }
 
-void SpecNode::declare(const std::string& key, const std::string& type, const std::string& def,
-                       const std::string& help) {
+const SchemaNode* SpecNode::declare(const std::string& key,
+                                    const std::shared_ptr<const SchemaNode>& reader) {
   declared_.push_back(key);
-  if (doc_) doc_->entries[key_path(key)] = fmt::format("{} ({}): {}", type, def, help);
+  if (!schema_) return nullptr;
+  const SchemaNode* s = schema_->find(key, *j_);
+  const std::string why =
+      s ? s->disagreement(*reader)
+        : "the reader declares " + reader->type_text() + ", " + reader->default_text() +
+              ", the schema has no such key here";
+  if (!why.empty())
+    throw Error(fmt::format("internal error: the spec reader and the spec schema "
+                            "(common/spec/spec_schemas.cpp) disagree on {}: {}",
+                            key_path(key), why));
+  if (doc_) doc_->visited.insert(s);
+  return s;
 }
 
 void SpecNode::fail(const std::string& key, const std::string& expected) const {
@@ -101,7 +108,7 @@ void SpecNode::fail(const std::string& key, const std::string& expected) const {
 
 double SpecNode::number(const std::string& key, std::optional<double> def, Range range,
                         const std::string& help) {
-  declare(key, "number " + range.describe(), show_default(def), help);
+  declare(key, schema::number(def, range, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, "a number " + range.describe() + " (" + help + ")");
@@ -115,7 +122,7 @@ double SpecNode::number(const std::string& key, std::optional<double> def, Range
 
 int SpecNode::integer(const std::string& key, std::optional<int> def, Range range,
                       const std::string& help) {
-  declare(key, "integer " + range.describe(), show_default(def), help);
+  declare(key, schema::integer(def, range, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, "an integer " + range.describe() + " (" + help + ")");
@@ -127,7 +134,7 @@ int SpecNode::integer(const std::string& key, std::optional<int> def, Range rang
 }
 
 bool SpecNode::boolean(const std::string& key, std::optional<bool> def, const std::string& help) {
-  declare(key, "boolean", show_default(def), help);
+  declare(key, schema::boolean(def, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, "true or false (" + help + ")");
@@ -139,7 +146,7 @@ bool SpecNode::boolean(const std::string& key, std::optional<bool> def, const st
 
 std::string SpecNode::string(const std::string& key, std::optional<std::string> def,
                              const std::string& help) {
-  declare(key, "string", show_default(def), help);
+  declare(key, schema::string(def, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, "a string (" + help + ")");
@@ -152,7 +159,7 @@ std::string SpecNode::string(const std::string& key, std::optional<std::string> 
 std::string SpecNode::choice(const std::string& key, std::optional<std::string> def,
                              const std::vector<std::string>& choices, const std::string& help) {
   const std::string allowed = "one of \"" + join(choices, "\", \"") + "\"";
-  declare(key, allowed, show_default(def), help);
+  declare(key, schema::choice(def, choices, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, allowed + " (" + help + ")");
@@ -172,7 +179,7 @@ std::vector<double> SpecNode::numbers(const std::string& key, int size,
                                       const std::string& help) {
   const std::string what =
       size >= 0 ? fmt::format("an array of {} numbers", size) : "a non-empty array of numbers";
-  declare(key, what, def ? "default " + json(*def).dump() : "required", help);
+  declare(key, schema::numbers(size, def, help));
   const json* v = lookup(key);
   if (!v) {
     if (!def) fail(key, what + " (" + help + ")");
@@ -189,18 +196,19 @@ std::vector<double> SpecNode::numbers(const std::string& key, int size,
 }
 
 SpecNode SpecNode::child(const std::string& key, bool required, const std::string& help) {
-  declare(key, "object", required ? "required" : "optional", help);
+  const SchemaNode* s = declare(key, schema::object(required, help, {}));
   const json* v = lookup(key);
   if (!v) {
     if (required) fail(key, "an object (" + help + ")");
-    return SpecNode(empty_object(), key_path(key), doc_);
+    return SpecNode(empty_object(), key_path(key), doc_, s);
   }
   if (!v->is_object()) fail(key, "an object (" + help + ")");
-  return SpecNode(*v, key_path(key), doc_);
+  return SpecNode(*v, key_path(key), doc_, s);
 }
 
 std::vector<std::string> SpecNode::names(const std::string& key, const std::string& help) const {
-  const_cast<SpecNode*>(this)->declare(key, "object of named entries", "optional", help);
+  const_cast<SpecNode*>(this)->declare(
+      key, schema::map(false, help, "name", schema::custom("any", "", json::object())));
   std::vector<std::string> out;
   const json* v = lookup(key);
   if (!v) return out;
@@ -211,7 +219,8 @@ std::vector<std::string> SpecNode::names(const std::string& key, const std::stri
 
 std::vector<SpecNode> SpecNode::children(const std::string& key, bool required,
                                          const std::string& help) {
-  declare(key, "array of objects", required ? "required" : "optional", help);
+  const SchemaNode* s = declare(key, schema::array(required, help, schema::object(true, "", {})));
+  const SchemaNode* item = s ? s->element.get() : nullptr;
   std::vector<SpecNode> out;
   const json* v = lookup(key);
   if (!v) {
@@ -219,14 +228,15 @@ std::vector<SpecNode> SpecNode::children(const std::string& key, bool required,
     return out;
   }
   if (!v->is_array()) fail(key, "an array of objects (" + help + ")");
+  if (doc_ && item && !v->empty()) doc_->visited.insert(item);
   for (size_t i = 0; i < v->size(); ++i)
-    out.emplace_back((*v)[i], key_path(key) + "/" + std::to_string(i), doc_);
+    out.emplace_back((*v)[i], key_path(key) + "/" + std::to_string(i), doc_, item);
   return out;
 }
 
 const json* SpecNode::declared_value(const std::string& key, const std::string& type,
                                      const std::string& help) {
-  declare(key, type, "optional", help);
+  declare(key, schema::custom(type, help, json::object()));
   return lookup(key);
 }
 

@@ -6,15 +6,19 @@
 // Each accessor declares a key and reads it; finish() then rejects any key that was
 // not declared ("unknown key 'tol_newton' in /solver; did you mean 'newton_tol'?").
 // Every error is an fe2::InputError naming the path, the value and what is expected.
-// The same declarations feed `fe2heart validate` and the reference printed by
-// `fe2heart spec-doc` (a SpecDoc collects them as they are declared).
+// A node may carry its part of the spec schema (SchemaNode.h, the one declaration of
+// every key, which `fe2heart spec-doc` and `spec-schema` print): each accessor then
+// checks that the key it reads is in the schema with the same type, default and range,
+// and a disagreement is an internal error (fe2::Error, exit 1), never the user's.
 #include "common/error.h"
 
 #include <nlohmann/json.hpp>
 
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -22,9 +26,12 @@ namespace fe2 {
 
 using json = nlohmann::json;
 
-/// Collected declarations: path -> "type, default, range: help".
+struct SchemaNode;
+
+/// What a read visited: the schema node of every key read (for the test that every
+/// key of the schema is read by some spec).
 struct SpecDoc {
-  std::map<std::string, std::string> entries;
+  std::set<const SchemaNode*> visited;
 };
 
 struct Range {
@@ -42,8 +49,10 @@ struct Range {
 
 class SpecNode {
  public:
-  /// `doc` is lent, may be null; it must outlive this node and its children.
-  SpecNode(const json& j, std::string path, SpecDoc* doc = nullptr);
+  /// `doc` and `schema` (this object's schema) are lent, may be null; they must outlive
+  /// this node and its children.
+  SpecNode(const json& j, std::string path, SpecDoc* doc = nullptr,
+           const SchemaNode* schema = nullptr);
 
   const std::string& path() const { return path_; }
   std::string key_path(const std::string& key) const;
@@ -85,12 +94,13 @@ class SpecNode {
 
  private:
   const json* lookup(const std::string& key) const;
-  void declare(const std::string& key, const std::string& type, const std::string& def,
-               const std::string& help);
+  /// Declares `key` as the reader sees it; returns its schema (null without a schema).
+  const SchemaNode* declare(const std::string& key, const std::shared_ptr<const SchemaNode>& reader);
 
   const json* j_;
   std::string path_;
   SpecDoc* doc_;
+  const SchemaNode* schema_;
   mutable std::vector<std::string> declared_;
   static const json& empty_object();
 };

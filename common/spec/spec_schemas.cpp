@@ -1,0 +1,264 @@
+// Every key of a run spec and of a unit spec, declared once. A reader that reads a key
+// not declared here, or with another type, default, range or choices, fails with an
+// internal error (SchemaNode.h); tests read every config and the exemplars in
+// tests/data/schema/ and require every key here to be read by some spec.
+#include "common/spec/spec_schemas.h"
+
+#include <limits>
+
+namespace fe2 {
+
+namespace {
+
+using namespace schema;
+using std::nullopt;
+
+const Range kOpenUnit{0.0, 1.0, true, true};  // (0, 1): tolerances, fractions
+
+// Fresh nodes per branch, so the coverage test sees each branch's keys read.
+SchemaKeys isotropic_keys() {
+  // −1 < ν < ½ is where the small-strain tensor is positive definite.
+  return {{"E", number(nullopt, Range::positive(), "Young's modulus (Pa)")},
+          {"nu", number(nullopt, Range{-1.0, 0.5, true, true}, "Poisson's ratio")}};
+}
+
+/// common/materials/material_factory.cpp
+Schema material() {
+  static const Schema s = defined(
+      "material",
+      object(true, "constitutive law",
+             {{"model", choice(nullopt, {"neo_hookean", "st_venant_kirchhoff", "guccione"},
+                               "constitutive law")}},
+             "model",
+             {{"neo_hookean", isotropic_keys()},
+              {"st_venant_kirchhoff", isotropic_keys()},
+              {"guccione",
+               {{"C", number(880.0, Range::positive(), "stiffness scale C (Pa)")},
+                {"bf", number(18.5, Range::positive(), "fibre exponent b_f")},
+                {"bt", number(3.58, Range::positive(), "transverse exponent b_t")},
+                {"bfs", number(1.63, Range::positive(), "fibre-shear exponent b_fs")},
+                {"kappa", number(1.0e5, Range::positive(),
+                                 "volumetric penalty kappa (Pa), U = kappa/2 (J-1)^2")}}}}));
+  return s;
+}
+
+Schema cell_size() {
+  return numbers(3, std::vector<double>{1.0, 0.25, 0.25}, "cell edge lengths L1 (fibre), L2, L3",
+                 Range::positive());
+}
+
+Schema cell_resolution() {
+  return integers(3, std::vector<double>{8, 4, 4}, Range::closed(1, 1000), "hexahedra per axis");
+}
+
+/// Materials of a built-in cell layout: one per named region.
+Schema region_materials(const std::vector<std::string>& regions) {
+  SchemaKeys keys;
+  for (const auto& r : regions) keys.emplace_back(r, material());
+  return object(true, "one material per region, by region name", std::move(keys));
+}
+
+/// worker/MicroModel.cpp (MicroModel::from_spec, MicroSolverOptions::from_spec)
+Schema micro_unit() {
+  static const Schema s = defined(
+      "unit",
+      object(
+          true, "the micro unit",
+          {{"cell", choice("two_cells", {"two_cells", "homogeneous", "laminate", "mesh_file"},
+                           "cell geometry: built-in layouts or a Gmsh hex mesh")},
+           {"solver",
+            object(false, "micro solver",
+                   {{"factorization",
+                     choice("auto", {"cholesky", "lu", "auto"},
+                            "factor of K: CHOLMOD LLᵀ, UMFPACK LU, or LLᵀ while K is symmetric "
+                            "positive definite and LU otherwise")},
+                    {"refresh",
+                     choice("fixed", {"every_iteration", "fixed", "adaptive"},
+                            "when to refactor K and recompute χ: every Newton iteration; at "
+                            "iteration 1 of every N_t-th step (paper Fig. 6); or when the extra "
+                            "GMRES work since the last refresh has cost as much as a refresh")},
+                    {"N_t", integer(10, Range::closed(1, 1e6),
+                                    "refresh period in steps (fixed policy)")},
+                    {"step4", boolean(true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves")},
+                    {"gmres_rtol", number(1e-10, kOpenUnit, "Step 1 relative residual tolerance")},
+                    {"gmres_restart", integer(50, Range::closed(1, 1000), "GMRES restart length")},
+                    {"gmres_max_iterations",
+                     integer(500, Range::closed(1, 1e6), "GMRES iteration cap")}})}},
+          "cell",
+          {{"two_cells",
+            {{"size", cell_size()},
+             {"resolution", cell_resolution()},
+             {"gap", number(0.1, Range{0.0, 0.5, true, true},
+                            "ECM gap per cell, as a fraction of L1")},
+             {"cross_section", number(0.75, kOpenUnit, "cell width as a fraction of L2 and L3")},
+             {"materials", region_materials({"ecm", "cell"})}}},
+           {"homogeneous",
+            {{"size", cell_size()},
+             {"resolution", cell_resolution()},
+             {"materials", region_materials({"matrix"})}}},
+           {"laminate",
+            {{"size", cell_size()},
+             {"resolution", cell_resolution()},
+             {"fraction", number(0.5, kOpenUnit, "volume fraction of phase a")},
+             {"axis", choice("x", {"x", "y", "z"}, "layer normal")},
+             {"materials", region_materials({"a", "b"})}}},
+           {"mesh_file",
+            {{"mesh_file", string(nullopt, "Gmsh 4.1 hex mesh of the cell")},
+             {"materials", map(true, "one material per region, by physical volume name",
+                               "region", material(), 1)}}}}));
+  return s;
+}
+
+Schema ramp() {
+  return choice("linear", {"linear", "constant"},
+                "value(t) = value·t/t_end (linear) or value (constant)");
+}
+
+/// coordinator/RunSpec.cpp
+Schema make_run_spec_schema() {
+  const Range any = Range::any();
+  return object(
+      true, "a run spec (fe2heart run, validate)",
+      {{"title", string("", "one line saying what this scene solves")},
+       {"description", string("", "what the scene shows and how to view it")},
+       {"mesh",
+        object(true, "macro mesh",
+               {{"kind", choice("box", {"box", "gmsh"},
+                                "structured box of tetrahedra, or a Gmsh 4.1 file")}},
+               "kind",
+               {{"box",
+                 {{"lo", numbers(3, std::vector<double>{0, 0, 0}, "lower corner")},
+                  {"hi", numbers(3, nullopt, "upper corner")},
+                  {"divisions", integers(3, nullopt, Range::closed(1, 1000),
+                                         "cells per axis (6 tets per cell)")},
+                  {"region_slabs",
+                   object(false, "split the box into equal slabs with region tags 1..count",
+                          {{"axis", choice("x", {"x", "y", "z"}, "slab normal")},
+                           {"count", integer(1, Range::closed(1, 1000), "number of slabs")}})}}},
+                {"gmsh", {{"file", string(nullopt, "Gmsh 4.1 ASCII mesh file")}}}})},
+       {"frame",
+        object(false, "material frame (fibre, sheet, normal)",
+               {{"kind", choice("constant", {"constant", "rotating"}, "fibre frame rule")},
+                {"fibre", numbers(3, std::vector<double>{1, 0, 0}, "fibre direction f (unit axis 1)")},
+                {"sheet", numbers(3, std::vector<double>{0, 1, 0}, "sheet direction s (unit axis 2)")}},
+               "kind",
+               {{"constant", {}},
+                {"rotating",
+                 {{"axis", numbers(3, std::vector<double>{0, 0, 1}, "rotation axis of the fibres")},
+                  {"coordinate", numbers(3, std::vector<double>{0, 1, 0},
+                                         "direction along which the angle varies (transmural)")},
+                  {"from", numbers(2, nullopt, "[coordinate, angle in degrees]")},
+                  {"to", numbers(2, nullopt, "[coordinate, angle in degrees]")}}}})},
+       {"models",
+        map(true, "point models by name", "name",
+            object(true, "a point model",
+                   {{"kind", choice(nullopt, {"fe2", "macro_law"},
+                                    "FE² micro unit per point, or the macro law itself")}},
+                   "kind",
+                   {{"fe2", {{"unit", micro_unit()}}}, {"macro_law", {{"material", material()}}}}),
+            1)},
+       {"assign",
+        object(false, "which model each element uses",
+               {{"default", optional(string(nullopt, "model of every element not in 'regions' "
+                                                     "(default: the first model)"))},
+                {"regions", map(false, "region tag or physical volume name -> model name",
+                                "region", string(nullopt, "model for this region"))}})},
+       {"dirichlet",
+        array(true, "prescribed displacements on node sets",
+              object(true, "a Dirichlet condition",
+                     {{"set", string(nullopt, "named node set or face")},
+                      {"components",
+                       integers(-1, std::vector<double>{0, 1, 2}, Range::closed(0, 2),
+                                "constrained components: any of 0 (x), 1 (y), 2 (z)")},
+                      {"value", numbers(3, std::vector<double>{0, 0, 0},
+                                        "prescribed displacement at t_end")},
+                      {"ramp", ramp()}}),
+              1)},
+       {"pressure",
+        array(false, "follower pressure on named surfaces",
+              object(true, "a follower pressure",
+                     {{"surface", string(nullopt, "named boundary surface")},
+                      {"value", number(nullopt, any, "pressure at t_end (Pa)")},
+                      {"ramp", ramp()}}))},
+       {"time",
+        object(false, "time stepping",
+               {{"t_end", number(1.0, Range::positive(), "end time")},
+                {"steps", integer(1, Range::closed(1, 1e7), "number of steps")},
+                {"scheme", choice("quasi_static", {"quasi_static", "newmark"},
+                                  "quasi-static load stepping or Newmark-β dynamics")},
+                {"beta", number(0.25, Range{0.0, 0.5, true, false}, "Newmark β")},
+                {"gamma", number(0.5, Range::closed(0.0, 1.0), "Newmark γ")},
+                {"density", number(1000.0, Range::positive(), "mass density (Newmark)")}})},
+       {"newton",
+        object(false, "Newton–Raphson",
+               {{"max_iterations", integer(20, Range::closed(1, 1000),
+                                           "iterations per step before a cutback")},
+                {"rtol", number(1e-8, kOpenUnit, "macro residual / max(‖f_int‖, ‖f_ext‖)")},
+                {"micro_rtol", number(1e-8, kOpenUnit, "unit residual ‖r‖ / r_ref")},
+                {"max_cutbacks", integer(4, Range::closed(0, 30), "step halvings before giving up")}})},
+       {"probes", map(false, "named material points to report", "name",
+                      numbers(3, nullopt, "reference position"))},
+       {"farm",
+        object(false, "MPI task farm (ranks, scheduling)",
+               {{"coordinators", integer(1, Range::closed(1, 1e6),
+                                         "ranks that own the macro problem (or --coordinators)")},
+                {"coordinators_work",
+                 boolean(true, "coordinator ranks also hold units (paper ranks 0–63)")},
+                {"policy", choice("cost_based", {"round_robin", "contiguous", "cost_based"},
+                                  "unit placement: static, or rebalanced by measured cost")},
+                {"rebalance_at", choice("iteration", {"iteration", "step"},
+                                        "when the cost-based policy may migrate units")},
+                {"batch", integer(4, Range::closed(1, 1e6), "jobs a worker pulls at once")},
+                {"min_gain", number(0.03, Range::closed(0.0, 1.0),
+                                    "least relative makespan gain worth a migration")},
+                {"tolerated_imbalance",
+                 number(0.05, Range::closed(0.0, 10.0),
+                        "no rebalance while predicted max/mean load <= 1 + this")},
+                {"latency", number(2e-6, Range::non_negative(), "network model: seconds per message")},
+                {"bandwidth", number(5e9, Range::positive(), "network model: bytes per second")},
+                {"stall_timeout",
+                 number(600.0, Range::positive(),
+                        "liveness limit, wall seconds: a rank that waits this long for a message "
+                        "stops the job naming the silent rank; must exceed the longest single "
+                        "unit job and macro solve")}})},
+       {"output",
+        object(false, "results",
+               {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},
+                {"vtu", boolean(true, "write VTU/PVD for ParaView")}})}});
+}
+
+/// tools/unit_spec.cpp
+Schema make_unit_spec_schema() {
+  const json nine = {{"type", "array"},
+                     {"items", {{"type", "number"}}},
+                     {"minItems", 9},
+                     {"maxItems", 9}};
+  return exactly_one_of(
+      {"Zbar", "Zbar_path"},
+      object(true, "a unit spec (fe2heart unit)",
+             {{"title", string("", "what this unit exploration shows")},
+              {"description", string("", "longer notes")},
+              {"unit", micro_unit()},
+              {"Zbar", optional(numbers(9, nullopt, "macro displacement gradient, column-major"))},
+              {"Zbar_path", custom("array of 9-number arrays",
+                                   "macro gradients to equilibrate in turn",
+                                   {{"type", "array"}, {"minItems", 1}, {"items", nine}})},
+              {"newton",
+               object(false, "unit Newton iterations",
+                      {{"rtol", number(1e-10, kOpenUnit, "‖r‖ / r_ref to reach")},
+                       {"max_iterations", integer(30, Range::closed(1, 1000), "iteration cap")}})}}));
+}
+
+}  // namespace
+
+const SchemaNode& run_spec_schema() {
+  static const Schema s = make_run_spec_schema();
+  return *s;
+}
+
+const SchemaNode& unit_spec_schema() {
+  static const Schema s = make_unit_spec_schema();
+  return *s;
+}
+
+}  // namespace fe2
