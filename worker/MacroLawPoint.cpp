@@ -25,6 +25,11 @@ void MacroLawPoint::serialize(Bytes& out) const {
   w.put_array(Zbar_.data(), 9);
 }
 
+size_t MacroLawPoint::state_bytes() const {
+  // As serialize(): kind string (length + text), then Z̄ (length + 9 doubles).
+  return sizeof(uint64_t) + kind().size() + sizeof(uint64_t) + 9 * sizeof(double);
+}
+
 void MacroLawPoint::deserialize(const Bytes& in) {
   ByteReader r(in, "macro-law point state");
   if (r.get_string() != kind()) throw Error("macro-law point state: wrong kind");

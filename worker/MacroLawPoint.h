@@ -16,6 +16,8 @@ class MacroLawPoint final : public PointModel {
   void serialize(Bytes& out) const override;
   void deserialize(const Bytes& in) override;
   std::string kind() const override { return "macro_law"; }
+  bool next_refresh(int, int) const override { return false; }  // nothing to factor
+  size_t state_bytes() const override;
 
  private:
   MaterialPtr material_;

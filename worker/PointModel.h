@@ -6,6 +6,7 @@
 #include "common/bytes.h"
 #include "proto/job.h"
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -24,6 +25,12 @@ class PointModel {
   virtual void serialize(Bytes& out) const = 0;
   virtual void deserialize(const Bytes& in) = 0;
   virtual std::string kind() const = 0;
+
+  /// Whether the next job, if it is (step, iteration) and not forced, refactors: the
+  /// scheduler charges a migration a factor rebuild only when it does not.
+  virtual bool next_refresh(int step, int iteration) const = 0;
+  /// Bytes serialize() writes now: what a migration of this point sends.
+  virtual size_t state_bytes() const = 0;
 };
 
 using PointModelPtr = std::unique_ptr<PointModel>;

@@ -146,21 +146,105 @@ TEST(MicroUnitState, RollbackRestoresCommittedState) {
   EXPECT_EQ((unit.w() - w0).norm(), 0.0);
 }
 
-// The adaptive policy refreshes less often than every iteration and still converges.
-TEST(MicroUnitPolicy, AdaptiveRefreshesWhenKrylovWorkOutgrowsARefresh) {
+// Eq. (11), Step 4: accepting an iteration moves w by δw₁ − χ ΔZ̄, with δw₁ = −K⁻¹r
+// and χ = K⁻¹G of the previous assembled state, here computed independently by a
+// dense LU of that state's K (not the unit's factor or GMRES).
+TEST(MicroUnitStep4, AcceptedUpdateIsDeltaW1MinusChiTimesDeltaZbar) {
+  MicroSolverOptions opt;
+  opt.refresh = MicroSolverOptions::Refresh::every_iteration;
+  MicroUnit unit(test::two_cell_model(opt));
+  const Vec9 Z1 = gradient({0.04, 0.01, 0.0, 0.0, -0.02, 0.0, 0.01, 0.0, 0.02});
+  const Vec9 Z2 = Z1 + gradient({0.01, -0.005, 0.002, 0.0, 0.004, 0.0, -0.003, 0.0, 0.006});
+  unit.iterate(job(0, 1, Z1));
+  unit.iterate(job(0, 2, Z1));  // w ≠ 0 now, so δw₁ below is a genuine Newton step
+  const Vec w_before = unit.w();
+  const Eigen::MatrixXd K(unit.system().K);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
+  const Vec dw1 = lu.solve(-unit.system().r);
+  const Eigen::MatrixXd chi = lu.solve(unit.system().G);
+  ASSERT_GT(dw1.norm(), 0.0);
+  unit.iterate(job(0, 3, Z2));
+  const Vec predictor = chi * (Z2 - Z1);
+  ASSERT_GT(predictor.norm(), 1e-3 * dw1.norm()) << "the test needs a visible χΔZ̄";
+  const Vec expected = w_before + dw1 - predictor;
+  EXPECT_LT((unit.w() - expected).norm(), 1e-8 * predictor.norm())
+      << "w moved by " << (unit.w() - w_before).norm() << ", χΔZ̄ = " << predictor.norm();
+  // Without Step 4 the same acceptance is δw₁ alone.
+  opt.step4 = false;
+  MicroUnit plain(test::two_cell_model(opt));
+  plain.iterate(job(0, 1, Z1));
+  plain.iterate(job(0, 2, Z1));
+  plain.iterate(job(0, 3, Z2));
+  EXPECT_LT((plain.w() - (w_before + dw1)).norm(), 1e-8 * predictor.norm());
+}
+
+// The adaptive policy in a unit whose factor goes stale (Z̄ keeps moving within one
+// step): replaying the unit's own GMRES counts and flop counts through the ski-rental
+// rule, written out here, predicts exactly which jobs refresh, and some beyond the
+// first do.
+TEST(MicroUnitPolicy, AdaptiveRefreshesExactlyWhereKrylovWorkPaysForIt) {
   MicroSolverOptions opt;
   opt.refresh = MicroSolverOptions::Refresh::adaptive;
   MicroUnit unit(test::two_cell_model(opt));
-  int total = 0;
-  for (int s = 1; s <= 12; ++s) {
-    const UnitEquilibrium eq =
-        equilibrate(unit, gradient({0.02 * s, 0.0, 0.0, 0.005 * s, 0, 0, 0, 0, 0}), 1e-10, 30, s);
-    total += eq.newton_iterations + 1;
+  const Vec9 Z0 = gradient({0.03, 0.0, 0.01, 0.0, -0.01, 0.0, 0.02, 0.0, 0.0});
+  const double matvec = 2.0 * static_cast<double>(unit.system().K.nonZeros());
+  double excess = 0.0, factor = 0.0, solve = 0.0;
+  int refreshes = 0;
+  for (int it = 1; it <= 40; ++it) {
+    const bool due = it == 1 || excess * (solve + matvec) >= factor + 9.0 * solve;
+    const proto::JobOutput out = unit.iterate(job(0, it, (1.0 + 0.15 * it) * Z0));
+    ASSERT_EQ(out.kind == proto::Refresh::refresh, due) << "job " << it << ", excess " << excess;
+    if (due) {
+      ++refreshes;
+      excess = 0.0;
+      factor = unit.factor()->factor_flops();
+      solve = unit.factor()->solve_flops();
+    } else {
+      excess += std::max(0, out.gmres_iterations - 1);
+    }
   }
-  // equilibrate() forces one refresh per call (exact final tangent); the policy adds
-  // few beyond those.
-  EXPECT_LT(unit.refresh_count(), total);
-  EXPECT_GE(unit.refresh_count(), 12);
+  EXPECT_EQ(unit.refresh_count(), refreshes);
+  EXPECT_GE(refreshes, 3) << "a stale factor must be refreshed by the adaptive policy";
+  EXPECT_LT(refreshes, 40) << "and not at every job";
+}
+
+// What the unit tells the scheduler: its next job's refresh (as that job then does)
+// and its state size (as serialize() then writes).
+TEST(MicroUnitReport, NextRefreshAndStateBytesAreWhatTheUnitThenDoes) {
+  for (auto policy : {MicroSolverOptions::Refresh::fixed, MicroSolverOptions::Refresh::adaptive,
+                      MicroSolverOptions::Refresh::every_iteration}) {
+    MicroSolverOptions opt;
+    opt.refresh = policy;
+    opt.N_t = 2;
+    MicroUnit unit(test::two_cell_model(opt));
+    EXPECT_TRUE(unit.next_refresh(0, 1)) << "no factor yet";
+    const Vec9 Z0 = gradient({0.02, 0.0, 0.0, 0.01, 0.0, 0.0, 0.0, 0.0, -0.01});
+    int step = 0, it = 1, refreshes = 0;
+    for (int k = 0; k < 24; ++k) {
+      Bytes state;
+      unit.serialize(state);
+      ASSERT_EQ(unit.state_bytes(), state.size()) << "job " << k;
+      const bool predicted = unit.next_refresh(step, it);
+      const auto out = unit.iterate(job(step, it, (1.0 + 0.1 * k) * Z0));
+      EXPECT_EQ(out.kind == proto::Refresh::refresh, predicted) << "step " << step << " it " << it;
+      refreshes += out.kind == proto::Refresh::refresh;
+      if (it == 3) {  // a step of three iterations; every fourth step is cut and retried
+        if (step % 4 == 3 && k % 2 == 1) {
+          unit.rollback_step();
+        } else {
+          unit.commit_step();
+          ++step;
+        }
+        it = 1;
+      } else {
+        ++it;
+      }
+    }
+    Bytes state;
+    unit.serialize(state);
+    EXPECT_EQ(unit.state_bytes(), state.size());
+    EXPECT_GT(refreshes, 1);
+  }
 }
 
 }  // namespace
