@@ -27,6 +27,11 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
                            "network model: seconds per message");
   fo.bandwidth = farm.number("bandwidth", 5e9, Range::positive(),
                              "network model: bytes per second");
+  fo.stall_timeout = farm.number(
+      "stall_timeout", 600.0, Range::positive(),
+      "liveness limit, wall seconds: a rank that waits this long for a message (a unit's "
+      "result, a batch, a collective) stops the job naming the silent rank; must exceed the "
+      "longest single unit job and macro solve");
   farm.finish();
   return fo;
 }
