@@ -14,8 +14,9 @@ void PullClient::begin(const std::vector<int>& coordinators, int step, int itera
   sources_.clear();
   // Every coordinator sends its first batch unasked (JobServer::begin).
   for (int c : coordinators) {
-    sources_.push_back(Source{c});
-    sources_.back().outstanding = true;
+    Source& s = sources_.emplace_back();
+    s.rank = c;
+    s.outstanding = true;
   }
   stats_ = proto::WorkerStats{};
   stats_.worker = transport_.rank();

@@ -34,7 +34,7 @@ class PullClient {
  private:
   void close_stats();
   struct Source {
-    int rank;
+    int rank = -1;
     bool outstanding = false;
     bool exhausted = false;  ///< the coordinator has no more jobs; results still to send
     bool done = false;
