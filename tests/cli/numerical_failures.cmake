@@ -4,7 +4,7 @@
 # inverted element. Specs in tests/data/numerics/ (see their "title").
 set(FE2_NUMERICS ${PROJECT_SOURCE_DIR}/tests/data/numerics)
 fe2_cli_test(cli.numerics.newmark_overflowing_rates 3
-             "cutting the step.*failed after 2 cutbacks: non-finite macro displacement gradient"
+             "failed after 2 cutbacks: non-finite macro displacement gradient"
              ARGS run ${FE2_NUMERICS}/newmark_tiny_step.json --out ${FE2_CLI_OUT}/numerics_newmark --overwrite)
 fe2_cli_test(cli.numerics.under_constrained_is_singular 3
              "failed after 1 cutbacks: the macro matrix is singular: MUMPS found [1-9][0-9]* null pivot.*rigid-body"
@@ -12,5 +12,5 @@ fe2_cli_test(cli.numerics.under_constrained_is_singular 3
 # A cut-back's retry starts from the committed units (issue 7 item 4): before, the
 # retry reused the factor and modes of the failed, inverted iterate and failed too.
 fe2_cli_test(cli.numerics.retry_after_cutback_converges 0
-             "cutting the step to dt = 0[.]5.*step +1/1 .*cutbacks 1.*done in"
+             "step +1/1 .*Newton +[0-9]+ .*cutbacks 1 "
              ARGS run ${FE2_NUMERICS}/beam_retry.json --out ${FE2_CLI_OUT}/numerics_retry --overwrite)
