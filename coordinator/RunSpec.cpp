@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 namespace fe2 {
 
@@ -122,7 +123,7 @@ void read_frame(SpecNode f, RunSpec& spec) {
   f.finish();
 }
 
-void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
+void read_models(SpecNode models, SpecNode assign, RunSpec& spec, bool build_units) {
   const auto names = [&] {
     std::vector<std::string> n;
     for (auto it = models.raw().begin(); it != models.raw().end(); ++it) n.push_back(it.key());
@@ -140,7 +141,9 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
                                       "FE² micro unit per point, or the macro law itself");
     if (kind == "fe2") {
       pm.kind = PointModelSpec::Kind::fe2;
-      pm.micro = MicroModel::from_spec(m.child("unit", true, "the micro unit"), spec.base_dir);
+      pm.plan = std::make_shared<const MicroModelPlan>(
+          MicroModel::plan(m.child("unit", true, "the micro unit"), spec.base_dir));
+      if (build_units) pm.micro = pm.plan->build();
     } else {
       pm.kind = PointModelSpec::Kind::macro_law;
       SpecNode mat = m.child("material", true, "constitutive law");
@@ -173,10 +176,21 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
     if (end && *end == '\0') found = static_cast<int>(t);
     for (const auto& [rt, rn] : spec.mesh.region_names)
       if (rn == tag) found = rt;
-    if (found < 0)
-      throw InputError(fmt::format("{}/{}: got a region that is neither a number nor a named "
-                                   "physical volume of the mesh",
-                                   regions.path(), tag));
+    // A region the mesh lacks would silently leave its intended elements on the default.
+    std::set<int> present(spec.mesh.region.begin(), spec.mesh.region.end());
+    if (found < 0 || !present.count(found)) {
+      std::vector<std::string> known;
+      for (int r : present) {
+        const auto nm = spec.mesh.region_names.find(r);
+        known.push_back(nm == spec.mesh.region_names.end()
+                            ? std::to_string(r)
+                            : fmt::format("{} (\"{}\")", r, nm->second));
+      }
+      throw InputError(fmt::format("{}/{}: got region \"{}\", which is not in the mesh {}; "
+                                   "expected one of its regions: {}",
+                                   regions.path(), tag, tag, spec.mesh_source,
+                                   fmt::join(known, ", ")));
+    }
     spec.model_of_region[found] = index_of(regions, tag, model);
   }
   regions.finish();
@@ -185,7 +199,7 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
 
 }  // namespace
 
-RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
+RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool build_units) {
   RunSpec spec;
   spec.file = file;
   spec.raw = j;
@@ -197,7 +211,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   read_mesh(root.child("mesh", true, "macro mesh"), spec);
   read_frame(root.child("frame", false, "material frame (fibre, sheet, normal)"), spec);
   read_models(root.child("models", true, "point models by name"),
-              root.child("assign", false, "which model each element uses"), spec);
+              root.child("assign", false, "which model each element uses"), spec, build_units);
 
   for (auto& d : root.children("dirichlet", true, "prescribed displacements on node sets")) {
     DirichletSpec ds;
@@ -286,8 +300,13 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
   return spec;
 }
 
-RunSpec read_run_spec_file(const std::string& file) {
-  return read_run_spec(read_json_file(file), file);
+RunSpec read_run_spec_file(const std::string& file, bool build_units) {
+  return read_run_spec(read_json_file(file), file, nullptr, build_units);
+}
+
+void build_unit_models(RunSpec& spec) {
+  for (auto& m : spec.models)
+    if (m.plan && !m.micro) m.micro = m.plan->build();
 }
 
 }  // namespace fe2

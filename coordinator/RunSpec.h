@@ -89,7 +89,11 @@ struct RunSpec {
 
 /// Reads and checks a spec; every problem is an InputError naming the key.
 /// Every key read is checked against run_spec_schema(); `doc`, if given, records those read.
-RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
-RunSpec read_run_spec_file(const std::string& file);
+/// `build_units` false: FE² models are only planned (PointModelSpec::plan, with their
+/// memory estimate), so they can be refused before allocation; build_unit_models builds them.
+RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr,
+                      bool build_units = true);
+RunSpec read_run_spec_file(const std::string& file, bool build_units = true);
+void build_unit_models(RunSpec& spec);
 
 }  // namespace fe2

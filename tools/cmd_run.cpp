@@ -8,6 +8,7 @@
 #include "coordinator/RunSpec.h"
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
+#include "tools/memory_limit.h"
 #include "tools/unit_spec.h"
 #include "worker/worker_loop.h"
 
@@ -25,7 +26,8 @@ std::string describe(const RunSpec& spec) {
   int units = 0, dofs = 0;
   for (int e = 0; e < spec.mesh.num_tets(); ++e) {
     const auto& m = spec.models[spec.model_index_of_tet(e)];
-    if (m.kind == PointModelSpec::Kind::fe2) ++units, dofs += m.micro->num_dofs();
+    if (m.kind == PointModelSpec::Kind::fe2)
+      ++units, dofs += m.micro ? m.micro->num_dofs() : m.plan->memory.dofs;
   }
   return fmt::format("{} nodes, {} tetrahedra ({} FE² units, {} micro DOF in all), {} steps{}",
                      spec.mesh.num_nodes(), spec.mesh.num_tets(), units, dofs, spec.steps,
@@ -77,6 +79,16 @@ std::string fatal_log_line(int rank, const std::string& what) {
                      static_cast<int>(ms), rank, what);
 }
 
+/// Refuses a run whose units would not fit: each rank's starting share (units of each
+/// model, with the model's shared data) against the memory limit, before any is built.
+void check_run_memory(const RunSpec& spec, const FarmLayout& layout, const std::string& limit) {
+  std::vector<std::vector<long long>> units(layout.ranks,
+                                            std::vector<long long>(spec.models.size(), 0));
+  const std::vector<int> model = spec.model_of_points();
+  for (size_t u = 0; u < model.size(); ++u) ++units[layout.initial_worker_of_unit[u]][model[u]];
+  check_unit_memory(spec.models, units, memory_limit(limit));
+}
+
 std::string format_duration(double s) {
   if (s < 120) return fmt::format("{:.1f} s", s);
   if (s < 7200) return fmt::format("{:.1f} min", s / 60);
@@ -85,16 +97,35 @@ std::string format_duration(double s) {
 
 }  // namespace
 
-int validate(const std::string& file) {
+// Checks everything a run would read, but builds no unit model: only counts, the
+// memory estimate against the limit, and each cell's mesh (periodicity, regions).
+int validate(const std::string& file, const std::string& memory_limit_text) {
+  const MemoryLimit limit = memory_limit(memory_limit_text);
   const json j = read_json_file(file);
   if (j.is_object() && j.contains("unit") && !j.contains("mesh")) {
-    const UnitSpec u = read_unit_spec(j, file);
-    fmt::print("{}: OK: unit spec, {} hexahedra, {} DOF, {} macro gradient(s)\n", file,
-               u.model->num_elements(), u.model->num_dofs(), u.path.size());
+    const UnitSpec u = read_unit_spec(j, file, nullptr, false);
+    check_unit_memory(*u.plan, 1, limit);
+    const int dofs = u.plan->check();
+    fmt::print("{}: OK: unit spec, {} hexahedra, {} DOF, {} macro gradient(s), memory ≈ {} "
+               "(limit {})\n",
+               file, u.plan->memory.elements, dofs, u.path.size(),
+               format_bytes(u.plan->memory.bytes_for(1)), format_bytes(limit.bytes));
     return 0;
   }
-  const RunSpec spec = read_run_spec(j, file);
-  fmt::print("{}: OK: {}\n", file, describe(spec));
+  const RunSpec spec = read_run_spec(j, file, nullptr, false);
+  // A run may spread its units over many ranks, so here one unit of each model must
+  // fit; `run` checks each rank's actual share.
+  std::vector<long long> units(spec.models.size(), 0);
+  for (int m : spec.model_of_points()) ++units[m];
+  double one_rank = 0;
+  for (size_t m = 0; m < spec.models.size(); ++m) {
+    if (!spec.models[m].plan) continue;
+    check_unit_memory(*spec.models[m].plan, 1, limit);
+    spec.models[m].plan->check();
+    one_rank += spec.models[m].plan->memory.bytes_for(units[m]);
+  }
+  fmt::print("{}: OK: {}; unit memory ≈ {} on one rank (limit {})\n", file, describe(spec),
+             format_bytes(one_rank), format_bytes(limit.bytes));
   return 0;
 }
 
@@ -103,7 +134,7 @@ int run(const RunOptions& o) {
   const proto::Group world(MPI_COMM_WORLD);
   const int rank = world.rank();
   // Input errors surface here identically on every rank: all exit 2, none hangs.
-  RunSpec spec = read_run_spec_file(o.spec);
+  RunSpec spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
   if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
   if (!o.policy.empty())
     spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
@@ -113,6 +144,9 @@ int run(const RunOptions& o) {
   if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
   if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
   const FarmLayout layout = FarmLayout::make(spec, world.size(), o.coordinators);
+  check_run_memory(spec, layout, o.memory_limit);
+  UnitStore::fault_from_env();  // a malformed test hook is bad input on every rank
+  build_unit_models(spec);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
 

@@ -1,5 +1,6 @@
 #include "common/io/vtu_writer.h"
 #include "tools/commands.h"
+#include "tools/memory_limit.h"
 #include "tools/unit_spec.h"
 #include "worker/unit_equilibrium.h"
 
@@ -10,7 +11,9 @@
 namespace fe2::cli {
 
 int unit(const UnitOptions& o) {
-  const UnitSpec spec = read_unit_spec(read_json_file(o.spec), o.spec);
+  UnitSpec spec = read_unit_spec(read_json_file(o.spec), o.spec, nullptr, false);
+  check_unit_memory(*spec.plan, 1, memory_limit(""));  // before anything big is allocated
+  spec.model = spec.plan->build();
   MicroUnit unit(spec.model);
   json results = json::array();
   UnitEquilibrium last;

@@ -11,10 +11,12 @@ struct RunOptions {
   std::string out;
   int coordinators = 0;  ///< 0: from the spec
   std::string policy;    ///< empty: from the spec
+  std::string memory_limit;  ///< "8G", "500M", bytes; empty: the available memory
   bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
 };
 int run(const RunOptions& o);
-int validate(const std::string& spec);
+/// `memory_limit` as in RunOptions.
+int validate(const std::string& spec, const std::string& memory_limit = "");
 
 struct UnitOptions {
   std::string spec;

@@ -26,6 +26,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000000));
   c_run->add_option("--policy", run.policy, "unit placement (overrides farm.policy)")
       ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
+  const std::string memory_help =
+      "memory a rank may use, e.g. 8G, 500M or bytes (default: the available memory, "
+      "MemAvailable, shared by the ranks of a node); unit models that would not fit are "
+      "refused before they are built";
+  c_run->add_option("--memory-limit", run.memory_limit, memory_help);
   c_run->add_flag("--overwrite", run.overwrite,
                   "replace an earlier run in the --out folder (its files only; without this "
                   "flag such a folder is refused)");
@@ -33,6 +38,8 @@ int main(int argc, char** argv) {
   std::string validate_spec;
   auto* c_validate = app.add_subcommand("validate", "check a run or unit spec and its meshes");
   c_validate->add_option("spec", validate_spec, "spec (JSON)")->required();
+  std::string validate_memory;
+  c_validate->add_option("--memory-limit", validate_memory, memory_help);
 
   fe2::cli::UnitOptions unit;
   auto* c_unit = app.add_subcommand(
@@ -107,6 +114,7 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     rc = app.exit(e);
+    if (rc != 0) rc = 2;  // usage errors are bad input (CLI11 says 105, 106, ...); --help stays 0
     MPI_Finalize();
     return rc;
   }
@@ -114,7 +122,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
   try {
     if (*c_run) rc = fe2::cli::run(run);
-    else if (*c_validate) rc = fe2::cli::validate(validate_spec);
+    else if (*c_validate) rc = fe2::cli::validate(validate_spec, validate_memory);
     else if (*c_unit) rc = fe2::cli::unit(unit);
     else if (*c_bench_unit) rc = fe2::cli::bench_unit(bench);
     else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);

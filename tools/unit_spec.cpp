@@ -9,13 +9,14 @@
 
 namespace fe2::cli {
 
-UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc) {
+UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bool build) {
   UnitSpec u;
   std::string base = std::filesystem::path(file).parent_path().string();
   SpecNode root(j, "", doc, &unit_spec_schema());
   root.string("title", "", "what this unit exploration shows");
   root.string("description", "", "longer notes");
-  u.model = MicroModel::from_spec(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);
+  u.plan = std::make_shared<const MicroModelPlan>(
+      MicroModel::plan(root.child("unit", true, "the micro unit"), base.empty() ? "." : base));
   const bool one = root.has("Zbar"), path = root.has("Zbar_path");
   if (one == path)
     root.fail(one ? "Zbar_path" : "Zbar",
@@ -43,6 +44,7 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc) {
   u.max_iterations = n.integer("max_iterations", 30, Range::closed(1, 1000), "iteration cap");
   n.finish();
   root.finish();
+  if (build) u.model = u.plan->build();
   return u;
 }
 

@@ -10,13 +10,16 @@
 namespace fe2::cli {
 
 struct UnitSpec {
-  MicroModelPtr model;
+  std::shared_ptr<const MicroModelPlan> plan;  ///< the unit as read, with its memory estimate
+  MicroModelPtr model;                         ///< built from `plan` (null if not built)
   std::vector<Vec9> path;
   double rtol = 1e-10;
   int max_iterations = 30;
 };
 
 /// Keys are checked against unit_spec_schema(); `doc`, if given, records those read.
-UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr);
+/// `build` false: only the plan (validate, or a memory check before building).
+UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr,
+                        bool build = true);
 
 }  // namespace fe2::cli

@@ -39,20 +39,29 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   return o;
 }
 
-std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::string& base_dir) {
+MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
+  MicroModelPlan plan;
+  plan.path = s.path();
+  plan.source = s.path();
   CellLayout c;
   c.kind = s.choice("cell", "two_cells", {"two_cells", "homogeneous", "laminate", "mesh_file"},
                     "cell geometry: built-in layouts or a Gmsh hex mesh");
-  HexMesh mesh;
-  std::vector<std::string> region_names;
-  std::string source = s.path();
+  std::array<long long, 3> cells{};
+  long long nodes = 0, elements = 0;
   if (c.kind == "mesh_file") {
     std::filesystem::path p = s.string("mesh_file", std::nullopt, "Gmsh 4.1 hex mesh of the cell");
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
-    mesh = read_gmsh_hexes(p.string());
-    source = p.string();
-    const int nreg = *std::max_element(mesh.region.begin(), mesh.region.end()) + 1;
-    for (int r = 0; r < nreg; ++r) region_names.push_back(std::to_string(r));
+    plan.file_mesh = read_gmsh_hexes(p.string());
+    plan.source = p.string();
+    plan.size_key = s.key_path("mesh_file");
+    plan.region_names = plan.file_mesh->region_names;  // the physical volume names of the file
+    // The grid with the mesh's element count and the aspect ratio of its box.
+    const HexMesh& m = *plan.file_mesh;
+    nodes = m.num_nodes();
+    elements = m.num_hexes();
+    const Vec3 L = m.hi - m.lo;
+    const double h = std::cbrt(L.prod() / static_cast<double>(elements));
+    for (int d = 0; d < 3; ++d) cells[d] = std::max<long long>(1, std::llround(L[d] / h));
   } else {
     const auto size = s.numbers("size", 3, std::vector<double>{1.0, 0.25, 0.25},
                                 "cell edge lengths L1 (fibre), L2, L3");
@@ -66,35 +75,63 @@ std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::s
       if (!(res[d] >= 1 && res[d] <= 1000 && res[d] == std::floor(res[d])))
         s.fail("resolution", "three integers in [1, 1000]");
       c.resolution[d] = static_cast<int>(res[d]);
+      cells[d] = c.resolution[d];
     }
+    plan.size_key = s.key_path("resolution");
+    nodes = (cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1);
+    elements = cells[0] * cells[1] * cells[2];
     if (c.kind == "laminate") {
       c.fraction = s.number("fraction", 0.5, Range{0.0, 1.0, true, true},
                             "volume fraction of phase a");
       const std::string ax = s.choice("axis", "x", {"x", "y", "z"}, "layer normal");
       c.axis = ax[0] - 'x';
-      region_names = {"a", "b"};
+      plan.region_names = {"a", "b"};
     } else if (c.kind == "two_cells") {
       c.gap = s.number("gap", 0.1, Range{0.0, 0.5, true, true},
                        "ECM gap per cell, as a fraction of L1");
       c.cross_section = s.number("cross_section", 0.75, Range{0.0, 1.0, true, true},
                                  "cell width as a fraction of L2 and L3");
-      region_names = {"ecm", "cell"};
+      plan.region_names = {"ecm", "cell"};
     } else {
-      region_names = {"matrix"};
+      plan.region_names = {"matrix"};
     }
-    mesh = make_cell_mesh(c);
+    plan.layout = c;
   }
   SpecNode mats = s.child("materials", true, "one material per region, by region name");
-  std::vector<MaterialPtr> materials;
-  for (const auto& name : region_names) {
+  for (const auto& name : plan.region_names) {
     SpecNode m = mats.child(name, true, "material of region '" + name + "'");
-    materials.push_back(make_material(m));
+    plan.materials.push_back(make_material(m));
   }
   mats.finish();
-  const auto options = MicroSolverOptions::from_spec(s.child("solver", false, "micro solver"));
+  plan.options = MicroSolverOptions::from_spec(s.child("solver", false, "micro solver"));
   s.finish();
-  return std::make_shared<const MicroModel>(std::move(mesh), std::move(materials), options,
-                                            source);
+  bool symmetric = true;
+  for (const auto& m : plan.materials) symmetric = symmetric && m->major_symmetric();
+  const bool lu = plan.options.factorization == MicroSolverOptions::Factorization::lu ||
+                  (plan.options.factorization == MicroSolverOptions::Factorization::automatic &&
+                   !symmetric);
+  plan.memory = estimate_micro_memory(cells, nodes, elements, lu);
+  return plan;
+}
+
+int MicroModelPlan::check() const {
+  const HexMesh mesh = file_mesh ? *file_mesh : make_cell_mesh(*layout);
+  const PeriodicDofMap dofs(mesh, source);
+  for (size_t e = 0; e < mesh.region.size(); ++e)
+    if (mesh.region[e] < 0 || mesh.region[e] >= static_cast<int>(materials.size()))
+      throw InputError(fmt::format("micro mesh '{}': element {} has region {} but only {} "
+                                   "materials are given",
+                                   source, e, mesh.region[e], materials.size()));
+  return dofs.num_dofs();
+}
+
+std::shared_ptr<const MicroModel> MicroModelPlan::build() const {
+  return std::make_shared<const MicroModel>(file_mesh ? *file_mesh : make_cell_mesh(*layout),
+                                            materials, options, source);
+}
+
+std::shared_ptr<const MicroModel> MicroModel::from_spec(SpecNode s, const std::string& base_dir) {
+  return plan(std::move(s), base_dir).build();
 }
 
 MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,

@@ -10,9 +10,12 @@
 #include "worker/PeriodicDofMap.h"
 #include "worker/SparseFactor.h"
 #include "worker/hex8.h"
+#include "worker/micro_cell.h"
+#include "worker/micro_memory.h"
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,10 +37,36 @@ struct MicroSolverOptions {
   static MicroSolverOptions from_spec(SpecNode node);
 };
 
+class MicroModel;
+
+/// A unit model read from its spec but not yet built: its cell (a built-in layout or a
+/// mesh read from file), materials and options, and what building it will cost. Reading
+/// a plan allocates at most the mesh of a mesh file, so a spec can be checked and its
+/// memory refused before the pattern, geometry or any factor exists.
+struct MicroModelPlan {
+  std::string path;          ///< the unit's spec path, e.g. /models/myocardium/unit
+  std::string size_key;      ///< the key that sets its size: <path>/resolution or /mesh_file
+  std::string source;        ///< labels errors: the mesh file, or the spec path
+  std::optional<CellLayout> layout;  ///< built-in cell
+  std::optional<HexMesh> file_mesh;  ///< cell read from a mesh file
+  std::vector<std::string> region_names;
+  std::vector<MaterialPtr> materials;  ///< one per region name
+  MicroSolverOptions options;
+  MicroMemoryEstimate memory;
+
+  /// What can be checked without the heavy parts, in O(mesh): the cell meshes with
+  /// every region present, is periodic, and every region has a material. Returns the
+  /// unit's number of DOF.
+  int check() const;
+  std::shared_ptr<const MicroModel> build() const;
+};
+
 class MicroModel {
  public:
-  /// Builds from a unit spec object (see `fe2heart spec-doc`); `base_dir` resolves
-  /// relative mesh files. `name` labels error messages.
+  /// Reads a unit spec object (see `fe2heart spec-doc`) without building the model;
+  /// `base_dir` resolves relative mesh files.
+  static MicroModelPlan plan(SpecNode node, const std::string& base_dir);
+  /// plan(node, base_dir).build()
   static std::shared_ptr<const MicroModel> from_spec(SpecNode node, const std::string& base_dir);
   /// Builds from a ready mesh and one material per region.
   MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials, MicroSolverOptions options,

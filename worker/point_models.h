@@ -12,7 +12,8 @@ namespace fe2 {
 struct PointModelSpec {
   std::string name;
   enum class Kind { fe2, macro_law } kind = Kind::fe2;
-  MicroModelPtr micro;   ///< fe2: the shared unit model
+  MicroModelPtr micro;   ///< fe2: the shared unit model (null until built)
+  std::shared_ptr<const MicroModelPlan> plan;  ///< fe2: what `micro` is built from, its memory
   MaterialPtr material;  ///< macro_law
 };
 

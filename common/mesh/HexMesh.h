@@ -5,6 +5,7 @@
 #include "common/tensor9.h"
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace fe2 {
@@ -13,6 +14,7 @@ struct HexMesh {
   std::vector<Vec3> nodes;
   std::vector<std::array<int, 8>> hexes;
   std::vector<int> region;   ///< per hex: material region index (0-based)
+  std::vector<std::string> region_names;  ///< per region index, where the mesh names them
   Vec3 lo = Vec3::Zero();    ///< bounding box of the periodic cell Y
   Vec3 hi = Vec3::Zero();
 

@@ -484,18 +484,31 @@ HexMesh read_gmsh_hexes(const std::string& file) {
   const auto hex_blocks = d.blocks_of(kHex);
   if (count_elements(hex_blocks) == 0) fail_no_elements(d, kHex, "8-node hexahedra");
 
+  // Materials are assigned by region name, so a hex volume outside every physical group
+  // has no material: refuse it rather than guess.
   std::set<int> volume_tags;
   for (const ElementBlock* b : hex_blocks) {
     const auto& physicals = d.physicals_of(3, b->entity);
-    if (!physicals.empty()) volume_tags.insert(physicals.front());
+    if (b->tags.empty()) continue;
+    if (physicals.empty())
+      throw InputError(fmt::format(
+          "mesh file '{}' line {}: hexahedra of volume entity {} (elements {}..{}) belong to no "
+          "physical group, expected every hex volume in a physical volume named after its "
+          "material (e.g. Physical Volume(\"cell\") = {{{}}};)",
+          d.file, b->lines.front(), b->entity, b->tags.front(), b->tags.back(), b->entity));
+    volume_tags.insert(physicals.front());
   }
 
   HexMesh h;
+  for (int tag : volume_tags) {
+    const auto it = d.physical_names.find({3, tag});
+    h.region_names.push_back(it == d.physical_names.end() ? std::to_string(tag) : it->second);
+  }
   const std::vector<int> index = compact_nodes(d, hex_blocks, h.nodes);
   for (const ElementBlock* b : hex_blocks) {
-    const auto& physicals = d.physicals_of(3, b->entity);
-    const int region =
-        physicals.empty() ? 0 : static_cast<int>(std::distance(volume_tags.begin(), volume_tags.find(physicals.front())));
+    if (b->tags.empty()) continue;
+    const int tag = d.physicals_of(3, b->entity).front();
+    const int region = static_cast<int>(std::distance(volume_tags.begin(), volume_tags.find(tag)));
     for (std::size_t i = 0; i < b->tags.size(); ++i) {
       std::array<int, 8> hex{};
       for (int a = 0; a < 8; ++a) hex[a] = index[b->nodes[8 * i + a]];

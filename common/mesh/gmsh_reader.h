@@ -22,9 +22,11 @@ namespace fe2 {
 TetMesh read_gmsh_tets(const std::string& file);
 
 /// A micro-unit mesh of a Gmsh file: 8-node hexahedra (type 5), region = 0-based
-/// index of the hex's physical volume tag among all physical volume tags of hex
-/// entities sorted ascending (0 for entities without one); lo/hi = bounding box of
-/// the hex nodes. Throws InputError if there are no hexes or one is inverted.
+/// index of the hex's (first) physical volume tag among all physical volume tags of hex
+/// entities sorted ascending; region_names = the physical names (the tag as text where
+/// a group has no name), which the unit spec's materials refer to; lo/hi = bounding
+/// box of the hex nodes. Throws InputError if there are no hexes, one is inverted, or
+/// a hex entity belongs to no physical volume.
 HexMesh read_gmsh_hexes(const std::string& file);
 
 }  // namespace fe2

@@ -4,7 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <functional>
+#include <set>
 #include <sstream>
 
 namespace fe2 {
@@ -251,13 +256,93 @@ void SpecNode::finish() const {
   }
 }
 
+namespace {
+
+// Deeper specs are refused before they are built: nlohmann's parser is iterative, but a
+// value nested 70,000 deep still crashed while being reported. No real spec nests past ~6.
+constexpr int kMaxSpecDepth = 64;
+
+// Follows the parser's events to know where it is (a JSON pointer such as
+// /models/muscle/unit) and which keys each open object already has: nlohmann keeps the
+// last of two equal keys silently, and a parse error names no key.
+class JsonPathTracker {
+ public:
+  explicit JsonPathTracker(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int depth, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        if (depth + 1 > kMaxSpecDepth)  // depth counts the containers around this one
+          throw InputError(fmt::format(
+              "spec file '{}': nesting depth {} at {} exceeds the limit of {}, expected a spec "
+              "nested at most {} deep",
+              file_, depth + 1, pointer(), kMaxSpecDepth, kMaxSpecDepth));
+        frames_.push_back({event == E::array_start, "", 0, {}});
+        break;
+      case E::key: {
+        Frame& f = frames_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw InputError(fmt::format("spec file '{}': duplicate key '{}' at {}, expected each "
+                                       "key once per object",
+                                       file_, f.key, pointer()));
+        break;
+      }
+      case E::object_end:
+      case E::array_end:
+        frames_.pop_back();
+        next_element();
+        break;
+      case E::value:
+        next_element();
+        break;
+    }
+    return true;
+  }
+
+  /// Where the parser is: "/a/b/3", or "/" at the top.
+  std::string pointer() const {
+    std::string p;
+    for (const Frame& f : frames_) {
+      if (f.array) p += "/" + std::to_string(f.index);
+      else if (!f.keys.empty()) p += "/" + f.key;
+    }
+    return p.empty() ? "/" : p;
+  }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::string key;   ///< object: the key being read
+    size_t index = 0;  ///< array: the element being read
+    std::set<std::string> keys;
+  };
+  void next_element() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
+  }
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 json read_json_file(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(fmt::format("spec file '{}' is a directory, expected a JSON file", file));
   std::ifstream in(file);
-  if (!in) throw InputError(fmt::format("cannot open spec file '{}'", file));
+  if (!in)
+    throw InputError(fmt::format("cannot open spec file '{}' ({})", file, std::strerror(errno)));
+  JsonPathTracker where(file);
   try {
-    return json::parse(in);
+    return json::parse(in, std::ref(where));
   } catch (const json::parse_error& e) {
     throw InputError(fmt::format("spec file '{}' is not valid JSON: {}", file, e.what()));
+  } catch (const json::exception& e) {  // e.g. out_of_range 406: a number such as 1e999
+    throw InputError(fmt::format("spec file '{}' at {}: {}, expected a finite JSON value", file,
+                                 where.pointer(), e.what()));
   }
 }
 

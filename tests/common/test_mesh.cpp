@@ -322,9 +322,36 @@ TEST(GmshReader, ReadsHexesWithSortedRegions) {
   ASSERT_EQ(h.num_hexes(), 2);
   EXPECT_EQ(h.hexes[0], (std::array<int, 8>{0, 1, 4, 3, 6, 7, 10, 9}));
   EXPECT_EQ(h.region, (std::vector<int>{1, 0}));  // physical tags 5 and 2 -> sorted [2, 5]
+  // Region names are the physical names, so unit materials are assigned by name.
+  EXPECT_EQ(h.region_names, (std::vector<std::string>{"matrix", "cell"}));
   EXPECT_EQ(h.lo, Vec3(0, 0, 0));
   EXPECT_EQ(h.hi, Vec3(2, 1, 1));
   EXPECT_DOUBLE_EQ(h.volume(), 2.0);
+}
+
+// An unnamed physical volume is named by its tag, as regions of macro meshes are.
+TEST(GmshReader, HexRegionWithoutNameIsNamedByTag) {
+  std::string text = slurp(data_file("two_hexes.msh"));
+  const std::string names = "$PhysicalNames\n2\n3 5 \"cell\"\n";
+  text.replace(text.find(names), names.size(), "$PhysicalNames\n1\n");
+  const ScratchDir dir;
+  write_text(dir / "unnamed.msh", text);
+  const HexMesh h = read_gmsh_hexes((dir / "unnamed.msh").string());
+  EXPECT_EQ(h.region_names, (std::vector<std::string>{"matrix", "5"}));
+}
+
+// A hex volume entity in no physical group has no material: refused, naming the entity.
+TEST(GmshReader, HexEntityWithoutPhysicalGroupIsRefused) {
+  std::string text = slurp(data_file("two_hexes.msh"));
+  const std::string entity2 = "2 1 0 0 2 1 1 1 2 0";  // volume 2 in physical group 2
+  text.replace(text.find(entity2), entity2.size(), "2 1 0 0 2 1 1 0 0");
+  const ScratchDir dir;
+  write_text(dir / "untagged.msh", text);
+  const std::string msg = input_error([&] { read_gmsh_hexes((dir / "untagged.msh").string()); });
+  EXPECT_NE(msg.find("untagged.msh' line 47: hexahedra of volume entity 2 (elements 2..2) belong "
+                     "to no physical group"),
+            std::string::npos)
+      << msg;
 }
 
 // ---------------------------------------------------------------------------------

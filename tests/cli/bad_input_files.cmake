@@ -1,0 +1,81 @@
+# Bad input that used to get through (issue 7, items 11-14): each case checks the exit
+# code 2 and the message that names the file or key, the value and what was expected.
+# Included from tests/cli/CMakeLists.txt (uses fe2_cli_test, FE2_CLI_BAD, FE2_CLI_OUT).
+
+# --- Memory (item 11): a 100³ unit is refused from its estimate, in seconds, naming the
+# key, the estimate and the limit; validate builds nothing, run writes nothing.
+set(huge "/models/myocardium/unit/resolution: got [[]100, 100, 100[]]. .*need.* ≈ [0-9.]+ [GT]B .*2999997 DOF.*above the memory limit of [0-9.]+ [kMGT]?B")
+fe2_cli_test(cli.bad_input.huge_unit.validate 2 "${huge}"
+             ARGS validate ${FE2_CLI_BAD}/huge_unit.json)
+fe2_cli_test(cli.bad_input.huge_unit.run 2 "${huge}"
+             ABSENT ${FE2_CLI_OUT}/huge_unit
+             ARGS run ${FE2_CLI_BAD}/huge_unit.json --out ${FE2_CLI_OUT}/huge_unit)
+set_tests_properties(cli.bad_input.huge_unit.validate cli.bad_input.huge_unit.run
+                     PROPERTIES TIMEOUT 15)
+# The shipped scene passes the default limit (see cli.validate.fe2_beam) but not 1M.
+set(tiny "/models/myocardium/unit/resolution: got [[]8, 4, 4[]]. .*381 DOF.*above the memory limit of 1[.]0 MB [(]--memory-limit 1M[)]")
+fe2_cli_test(cli.bad_input.memory_limit_1M.validate 2 "${tiny}"
+             ARGS validate --memory-limit 1M ${PROJECT_SOURCE_DIR}/configs/fe2_beam.json)
+fe2_cli_test(cli.bad_input.memory_limit_1M.run 2 "${tiny}"
+             ABSENT ${FE2_CLI_OUT}/memory_limit_1M
+             ARGS run ${PROJECT_SOURCE_DIR}/configs/fe2_beam.json --memory-limit 1M
+                  --out ${FE2_CLI_OUT}/memory_limit_1M)
+fe2_cli_test(cli.validate.memory_limit_1G 0 "fe2_beam[.]json: OK: .*unit memory ≈ [0-9.]+ MB on one rank [(]limit 1[.]1 GB[)]"
+             ARGS validate --memory-limit 1G ${PROJECT_SOURCE_DIR}/configs/fe2_beam.json)
+fe2_cli_test(cli.bad_input.memory_limit_syntax 2
+             "--memory-limit: got '12Q', expected a positive size in bytes, optionally with a suffix k, M, G or T"
+             ARGS validate --memory-limit 12Q ${FE2_CLI_BAD}/small_valid.json)
+
+# --- Nesting (item 12): 70,000 nested arrays crashed the reader (SIGSEGV).
+set(deep_json ${CMAKE_CURRENT_BINARY_DIR}/deep.json)
+string(REPEAT "[" 70000 open)
+string(REPEAT "]" 70000 close)
+file(WRITE ${deep_json} "${open}${close}\n")
+fe2_cli_test(cli.bad_input.deep_json.validate 2
+             "spec file '[^']*deep[.]json': nesting depth 65 at /0/0/.* exceeds the limit of 64"
+             ARGS validate ${deep_json})
+
+# --- Files and keys named (item 13).
+fe2_cli_test(cli.bad_input.directory_as_spec.validate 2
+             "spec file '[^']*/tests/data/bad' is a directory, expected a JSON file"
+             ARGS validate ${FE2_CLI_BAD})
+fe2_cli_test(cli.bad_input.number_overflow.validate 2
+             "spec file '[^']*overflow[.]json' at /time/t_end: .*number overflow parsing '1e999'"
+             ARGS validate ${FE2_CLI_BAD}/overflow.json)
+fe2_cli_test(cli.bad_input.duplicate_key.validate 2
+             "spec file '[^']*duplicate_key[.]json': duplicate key 'E' at /models/muscle/material/E"
+             ARGS validate ${FE2_CLI_BAD}/duplicate_key.json)
+fe2_cli_test(cli.bad_input.missing_region.validate 2
+             "/assign/regions/3: got region \"3\", which is not in the mesh box generator. expected one of its regions: 1, 2$"
+             ARGS validate ${FE2_CLI_BAD}/missing_region.json)
+fe2_cli_test(cli.validate.two_regions 0 "two_regions[.]json: OK: 12 nodes, 12 tetrahedra"
+             ARGS validate ${FE2_CLI_BAD}/two_regions.json)
+# Command-line usage errors are bad input: exit 2 (CLI11's own codes are 105, 106, ...).
+fe2_cli_test(cli.usage.missing_argument 2 "spec is required" ARGS validate)
+fe2_cli_test(cli.usage.missing_out 2 "--out is required"
+             ARGS run ${FE2_CLI_BAD}/small_valid.json)
+fe2_cli_test(cli.usage.bad_choice 2 "--policy: fastest not in [{]"
+             ARGS run ${FE2_CLI_BAD}/small_valid.json --out ${FE2_CLI_OUT}/x --policy fastest)
+# A malformed test hook must not silently test nothing.
+foreach(fault "unit=x" "unit=1,kind=stall_forever" "unit=1,steps=2")
+  string(MAKE_C_IDENTIFIER "${fault}" id)
+  if(fault STREQUAL "unit=x")
+    set(why "unit=x is not a non-negative integer")
+  elseif(fault MATCHES "kind")
+    set(why "unknown kind 'stall_forever' [(]kinds: numerical, fatal[^)]*[)]")
+  else()
+    set(why "unknown field 'steps' [(]fields: unit, step, kind[)]")
+  endif()
+  add_test(NAME cli.bad_input.fault_env.${id}
+           COMMAND ${FE2_CLI_EXPECT} --absent ${FE2_CLI_OUT}/fault_${id} 2
+                   "FE2HEART_FAULT='${fault}': ${why}. expected unit=K"
+                   -- env FE2HEART_FAULT=${fault} $<TARGET_FILE:fe2heart>
+                   run ${FE2_CLI_BAD}/small_valid.json --out ${FE2_CLI_OUT}/fault_${id})
+  set_tests_properties(cli.bad_input.fault_env.${id} PROPERTIES LABELS unit
+                       ENVIRONMENT "${FE2_TEST_ENV}" TIMEOUT 90)
+endforeach()
+
+# --- Gmsh micro cells (item 14): a hex volume in no physical group has no material.
+fe2_cli_test(cli.bad_input.untagged_cell.validate 2
+             "mesh file '[^']*untagged_cell[.]msh' line 77: hexahedra of volume entity 1 [(]elements 1..8[)] belong to no physical group"
+             ARGS validate ${FE2_CLI_BAD}/untagged_unit.json)

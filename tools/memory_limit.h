@@ -1,0 +1,35 @@
+#pragma once
+// The memory a rank may use (`--memory-limit`) and the check that refuses unit models
+// that would not fit, before any of them is built (issue 7 item 11).
+#include "coordinator/RunSpec.h"
+#include "worker/MicroModel.h"
+
+#include <string>
+#include <vector>
+
+namespace fe2::cli {
+
+/// Bytes of "8G", "500M", "64k", "1.5G" (powers of 1024) or "123456" (bytes). Throws
+/// InputError naming `option` and the text when it is not such a size.
+double parse_memory_size(const std::string& text, const std::string& option);
+
+struct MemoryLimit {
+  double bytes = 0;
+  std::string origin;  ///< "--memory-limit 8G", or "MemAvailable 7.6 GB / 2 ranks on this node"
+};
+
+/// `text` empty: the machine's available memory (MemAvailable in /proc/meminfo) shared
+/// by the ranks of this node (OMPI_COMM_WORLD_LOCAL_SIZE / MPI_LOCALNRANKS, else 1).
+MemoryLimit memory_limit(const std::string& text);
+
+/// Refuses (InputError, naming the model's size key, the estimate and the limit) when
+/// `units_on_rank[m]` units of each model m (with m's shared model) exceed the limit on
+/// some rank. `units_on_rank`: per rank, units per model index of spec.models.
+void check_unit_memory(const std::vector<PointModelSpec>& models,
+                       const std::vector<std::vector<long long>>& units_on_rank,
+                       const MemoryLimit& limit);
+
+/// One model with `units` units on one rank.
+void check_unit_memory(const MicroModelPlan& plan, long long units, const MemoryLimit& limit);
+
+}  // namespace fe2::cli
