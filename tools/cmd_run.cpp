@@ -66,6 +66,23 @@ void check_ranks_agree(const proto::Group& world, const RunSpec& spec) {
     throw InputError(std::string(reinterpret_cast<const char*>(verdict.data()), verdict.size()));
 }
 
+/// True on every rank iff no rank failed to read its input. A rank that failed says
+/// why itself (its error may be the only copy: other ranks read other files); rank 0
+/// adds how many failed. @note Collective on the world: the first one of a run.
+bool agree_input_ok(const proto::Group& world, const std::string& error) {
+  if (!error.empty()) {
+    if (world.size() > 1) spdlog::error("rank {}: {}", world.rank(), error);
+    else spdlog::error("{}", error);
+  }
+  double failed = error.empty() ? 0.0 : 1.0;
+  world.allreduce_sum(&failed, 1);
+  if (failed == 0.0) return true;
+  if (world.rank() == 0 && error.empty())
+    spdlog::error("{} of {} ranks could not read their input (see their messages); stopping",
+                  static_cast<int>(failed), world.size());
+  return false;
+}
+
 /// A fatal error as a log line, for ranks without the file sink.
 std::string fatal_log_line(int rank, const std::string& what) {
   const auto now = std::chrono::system_clock::now();
@@ -133,20 +150,31 @@ int run(const RunOptions& o) {
   proto::Transport transport(MPI_COMM_WORLD);
   const proto::Group world(MPI_COMM_WORLD);
   const int rank = world.rank();
-  // Input errors surface here identically on every rank: all exit 2, none hangs.
-  RunSpec spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
-  if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
-  if (!o.policy.empty())
-    spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
-                       : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
-                                                  : FarmOptions::Policy::cost_based;
-  // spec.json in the output is the spec that ran (farm-sim replays its farm section).
-  if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
-  if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
-  const FarmLayout layout = FarmLayout::make(spec, world.size(), o.coordinators);
-  check_run_memory(spec, layout, o.memory_limit);
-  UnitStore::fault_from_env();  // a malformed test hook is bad input on every rank
-  build_unit_models(spec);
+  // Every rank reads its own input (a cluster may lack a shared file system, so one
+  // node can miss a file the others see). Before any other collective, all ranks agree
+  // that input is OK: a rank that failed prints its own error, and every rank exits 2.
+  RunSpec spec;
+  FarmLayout layout;
+  std::string input_error;
+  try {
+    spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
+    if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
+    if (!o.policy.empty())
+      spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
+                         : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
+                                                    : FarmOptions::Policy::cost_based;
+    // spec.json in the output is the spec that ran (farm-sim replays its farm section).
+    if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
+    if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
+    layout = FarmLayout::make(spec, world.size(), o.coordinators);
+    check_run_memory(spec, layout, o.memory_limit);
+    UnitStore::fault_from_env();  // a malformed test hook is bad input on every rank
+    build_unit_models(spec);
+  } catch (const std::exception& e) {  // InputError, or e.g. bad_alloc on a huge mesh
+    input_error = e.what();
+  }
+  if (!agree_input_ok(world, input_error)) return 2;
+  proto::set_stall_timeout(spec.farm.stall_timeout);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
 

@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 std::vector<std::string> specs_to_read() {
   const fs::path src = FE2_SOURCE_DIR;
   std::vector<std::string> files;
-  for (const fs::path dir : {src / "configs", src / "tests/data/schema"})
+  for (const fs::path& dir : {src / "configs", src / "tests/data/schema"})
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".json" && e.path().filename().string().rfind("reject_", 0) != 0)
         files.push_back(e.path().string());
