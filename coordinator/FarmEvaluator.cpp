@@ -180,10 +180,11 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       const proto::CostReport rep = proto::CostReport::unpack(b);
       for (const proto::JobCost& c : rep.jobs) {
         FE2_CHECK(static_cast<size_t>(c.unit) < last_cost_.size(), "cost of unknown unit {}", c.unit);
+        if (trace_) trace_->unit(step, iteration, placement_[c.unit], c);
+        if (c.failed) continue;  // no cost measured: keep the unit's last good figures
         costs_->observe(c.unit, c.kind == proto::Refresh::refresh, c.cpu_seconds, c.cpu_refresh,
                         static_cast<double>(c.state_bytes));
         last_cost_[c.unit] = c;
-        if (trace_) trace_->unit(step, iteration, placement_[c.unit], c);
       }
     }
     last_costs_at_ = {step, iteration};

@@ -29,9 +29,10 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
                              "network model: bytes per second");
   fo.stall_timeout = farm.number(
       "stall_timeout", 600.0, Range::positive(),
-      "liveness limit, wall seconds: a rank that waits this long for a message (a unit's "
-      "result, a batch, a collective) stops the job naming the silent rank; must exceed the "
-      "longest single unit job and macro solve");
+      "liveness limit, wall seconds: a rank that waits this long for a message "
+      "stops the job naming the silent rank; must exceed the longest wait of a "
+      "healthy run: one Newton iteration (micro phase and macro solve) plus an "
+      "output write");
   farm.finish();
   return fo;
 }

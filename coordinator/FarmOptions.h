@@ -18,7 +18,8 @@ struct FarmOptions {
   double bandwidth = 5e9;           ///< network model: bytes per second (paper: 5 GB/s links)
   /// Liveness limit: a rank that waits this long (wall seconds) for a message it needs
   /// (a result, a batch, a control message, a collective) aborts the job naming whom it
-  /// waited for. Must exceed the longest single phase (one unit job, one macro solve).
+  /// waited for. A healthy wait can span one whole Newton iteration (a worker idle until
+  /// the next command: the other workers' jobs, the macro solve) and an output write.
   double stall_timeout = 600.0;
 
   /// Reads the spec section "farm" (every key optional): the run and `farm-sim`

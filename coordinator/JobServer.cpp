@@ -83,12 +83,13 @@ std::string JobServer::describe_outstanding() const {
       if (worker_of_job_[k] == worker && results_[k].unit < 0 &&
           std::find(q.jobs.begin(), q.jobs.end(), static_cast<int>(k)) == q.jobs.end())
         running.push_back(jobs_[k].unit);
+    const size_t unanswered = running.size();
     if (running.size() > 8) running.resize(8);
     out += fmt::format("{}rank {} is silent: it holds {} unanswered job(s) of step {} iteration "
                        "{} (units {}{})",
-                       out.empty() ? "" : "; ", worker, q.assigned - q.received,
-                       jobs_.front().step, jobs_.front().iteration, fmt::join(running, ", "),
-                       q.assigned - q.received > 8 ? ", ..." : "");
+                       out.empty() ? "" : "; ", worker, unanswered, jobs_.front().step,
+                       jobs_.front().iteration, fmt::join(running, ", "),
+                       unanswered > 8 ? ", ..." : "");
   }
   return out.empty() ? "no worker owes this coordinator a result" : out;
 }

@@ -71,7 +71,7 @@ void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::ve
   id_.a_loc = a_.data();
   run(2, "factorization");
   if (id_.INFOG(28) > 0)
-    throw NumericalError(fmt::format(
+    throw SingularMatrixError(fmt::format(
         "the macro matrix is singular: MUMPS found {} null pivot(s) (INFOG(28)) in {} equations. "
         "Likely cause: the Dirichlet conditions leave rigid-body motions free (each of the 3 "
         "translations and 3 rotations must be fixed, e.g. a face fixed in all components "

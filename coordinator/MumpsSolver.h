@@ -8,9 +8,21 @@
 #include <dmumps_c.h>
 #include <mpi.h>
 
+#include "common/error.h"
+
+#include <string>
 #include <vector>
 
 namespace fe2 {
+
+/// S̄ has null pivots (MUMPS INFOG(28) > 0). `at_committed_state`: the matrix was that
+/// of the last converged state, so cutting the step back cannot cure it.
+class SingularMatrixError : public NumericalError {
+ public:
+  explicit SingularMatrixError(const std::string& what, bool at_committed_state = false)
+      : NumericalError(what), at_committed_state(at_committed_state) {}
+  bool at_committed_state;
+};
 
 class MumpsSolver {
  public:

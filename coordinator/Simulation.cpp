@@ -264,7 +264,17 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     if (!converged) {
       // (h) S̄ Δū = ḡ on the coordinators (ḡ summed on the MUMPS host), Δū to all
       group_.reduce_sum(g.data(), nfree, 0);
-      mumps_.factorize_and_solve(values_, g);
+      try {
+        mumps_.factorize_and_solve(values_, g);
+      } catch (const SingularMatrixError& e) {
+        // Quasi-static iteration 1 assembles at the committed ū (points have no rate
+        // dependence yet): the same matrix whatever the step, so no cut-back can help.
+        if (it == 1 && !spec_.dynamic)
+          throw SingularMatrixError(std::string(e.what()) + "; it is the matrix of the last "
+                                    "converged state, so cutting the step back cannot help",
+                                    true);
+        throw;
+      }
       group_.bcast(g.data(), nfree, 0);
       if (!std::all_of(g.begin(), g.end(), [](double x) { return std::isfinite(x); }))
         throw NumericalError(fmt::format("non-finite macro correction Δū at t = {:.6g}", t_new));
@@ -323,6 +333,14 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
                             "max unit |r|/r_ref = {:.3e})",
                             spec_.newton_max_iterations, rec.residuals.back(),
                             rec.micro_residuals.back());
+      } catch (const SingularMatrixError& e) {
+        if (e.at_committed_state) {
+          rollback();
+          result.error = fmt::format("step {} (t = {:.6g} → {:.6g}): {}", step, t_n_, t_new, e.what());
+          result.history.push_back(rec);
+          return result;
+        }
+        why = e.what();
       } catch (const NumericalError& e) {
         why = e.what();
       }

@@ -21,19 +21,6 @@ void check_mpi(int rc, const char* what) {
 namespace {
 double g_stall_timeout = std::numeric_limits<double>::infinity();
 
-const char* type_name(Type t) {
-  switch (t) {
-    case Type::hello: return "hello";
-    case Type::control: return "control";
-    case Type::pull: return "pull";
-    case Type::batch: return "batch";
-    case Type::stats: return "stats";
-    case Type::state: return "unit state";
-    case Type::costs: return "costs";
-  }
-  return "?";
-}
-
 /// Polls `done()` until it is true or the liveness limit passes (then false). Spins
 /// briefly (latency of short waits), then naps with growing pauses so a waiting rank
 /// leaves its core to a computing one.
@@ -231,7 +218,7 @@ Bytes Transport::recv(Type type, int source, int* from, double patience) {
       patience);
   if (!arrived)
     throw StallError(fmt::format("no '{}' message from {} for {:.0f} s (farm.stall_timeout)",
-                                 type_name(type),
+                                 name_of(type),
                                  source == MPI_ANY_SOURCE ? std::string("any rank")
                                                           : fmt::format("rank {}", source),
                                  patience * g_stall_timeout));

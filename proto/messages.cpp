@@ -11,18 +11,6 @@ void header(ByteWriter& w, Type t) {
   w.put<uint16_t>(static_cast<uint16_t>(t));
 }
 
-const char* name_of(Type t) {
-  switch (t) {
-    case Type::hello: return "Hello";
-    case Type::control: return "Control";
-    case Type::pull: return "Pull";
-    case Type::batch: return "Batch";
-    case Type::stats: return "Stats";
-    case Type::state: return "State";
-    case Type::costs: return "Costs";
-  }
-  return "unknown";
-}
 
 void finish(const ByteReader& r) {
   if (!r.at_end())
@@ -37,6 +25,19 @@ void check_count(const ByteReader& r, uint64_t n, size_t min_bytes_each) {
 }
 
 }  // namespace
+
+const char* name_of(Type t) {
+  switch (t) {
+    case Type::hello: return "Hello";
+    case Type::control: return "Control";
+    case Type::pull: return "Pull";
+    case Type::batch: return "Batch";
+    case Type::stats: return "Stats";
+    case Type::state: return "State";
+    case Type::costs: return "Costs";
+  }
+  return "unknown";
+}
 
 void check_header(ByteReader& r, Type expected) {
   const auto version = r.get<uint16_t>();

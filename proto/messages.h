@@ -31,6 +31,9 @@ namespace fe2::proto {
 
 enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6, costs = 7 };
 
+/// The message type's name, as errors print it ("Pull", "Batch", ...).
+const char* name_of(Type t);
+
 /// Point-to-point tags; one per message type.
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 

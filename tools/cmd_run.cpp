@@ -153,6 +153,7 @@ int run(const RunOptions& o) {
   // Every rank reads its own input (a cluster may lack a shared file system, so one
   // node can miss a file the others see). Before any other collective, all ranks agree
   // that input is OK: a rank that failed prints its own error, and every rank exits 2.
+  proto::set_stall_timeout(FarmOptions{}.stall_timeout);  // until the spec says otherwise
   RunSpec spec;
   FarmLayout layout;
   std::string input_error;
@@ -182,15 +183,15 @@ int run(const RunOptions& o) {
   const proto::Group coords = world.split(coordinator ? 0 : -1, rank);
   const std::vector<int> model_of_unit = spec.model_of_points();
   std::unique_ptr<UnitStore> store;
-  if (layout.is_worker(rank)) {
-    store = std::make_unique<UnitStore>(spec.models, model_of_unit);
-    for (size_t u = 0; u < model_of_unit.size(); ++u)
-      if (layout.initial_worker_of_unit[u] == rank) store->create(static_cast<int>(u));
-  }
 
   // From here on a failure on one rank must end every rank: no one may wait forever.
   bool log_open = false;  // rank 0's file sink is in place
   try {
+    if (layout.is_worker(rank)) {
+      store = std::make_unique<UnitStore>(spec.models, model_of_unit);
+      for (size_t u = 0; u < model_of_unit.size(); ++u)
+        if (layout.initial_worker_of_unit[u] == rank) store->create(static_cast<int>(u));
+    }
     if (!coordinator) {
       run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch);
       return 0;

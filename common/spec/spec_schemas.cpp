@@ -219,8 +219,9 @@ Schema make_run_spec_schema() {
                 {"stall_timeout",
                  number(600.0, Range::positive(),
                         "liveness limit, wall seconds: a rank that waits this long for a message "
-                        "stops the job naming the silent rank; must exceed the longest single "
-                        "unit job and macro solve")}})},
+                        "stops the job naming the silent rank; must exceed the longest wait of a "
+                        "healthy run: one Newton iteration (micro phase and macro solve) plus an "
+                        "output write")}})},
        {"output",
         object(false, "results",
                {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},
