@@ -2,18 +2,31 @@
 
 namespace fe2 {
 
+const std::vector<std::string>& FarmOptions::policy_names() {
+  static const std::vector<std::string> names = {"round_robin", "contiguous", "cost_based"};
+  return names;
+}
+
+FarmOptions::Policy FarmOptions::policy_of(const std::string& name) {
+  const auto& n = policy_names();
+  for (size_t i = 0; i < n.size(); ++i)
+    if (n[i] == name) return static_cast<Policy>(i);
+  throw InputError(fmt::format("placement policy '{}': expected one of {}", name,
+                               fmt::join(n, ", ")));
+}
+
+const char* FarmOptions::name_of(Policy p) {
+  return policy_names().at(static_cast<size_t>(p)).c_str();
+}
+
 FarmOptions FarmOptions::from_spec(SpecNode farm) {
   FarmOptions fo;
   fo.coordinators = farm.integer("coordinators", 1, Range::closed(1, 1e6),
                                  "ranks that own the macro problem (or --coordinators)");
   fo.coordinators_work = farm.boolean("coordinators_work", true,
                                       "coordinator ranks also hold units (paper ranks 0–63)");
-  const std::string pol = farm.choice("policy", "cost_based",
-                                      {"round_robin", "contiguous", "cost_based"},
-                                      "unit placement: static, or rebalanced by measured cost");
-  fo.policy = pol == "round_robin"  ? FarmOptions::Policy::round_robin
-              : pol == "contiguous" ? FarmOptions::Policy::contiguous
-                                    : FarmOptions::Policy::cost_based;
+  fo.policy = policy_of(farm.choice("policy", "cost_based", policy_names(),
+                                    "unit placement: static, or rebalanced by measured cost"));
   fo.rebalance_at = farm.choice("rebalance_at", "iteration", {"iteration", "step"},
                                 "when the cost-based policy may migrate units") == "iteration"
                         ? FarmOptions::When::iteration

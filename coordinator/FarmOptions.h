@@ -3,6 +3,7 @@
 #include "common/spec/SpecNode.h"
 
 #include <string>
+#include <vector>
 
 namespace fe2 {
 
@@ -25,6 +26,12 @@ struct FarmOptions {
   /// Reads the spec section "farm" (every key optional): the run and `farm-sim`
   /// (which replays a run from its spec.json) share these declarations.
   static FarmOptions from_spec(SpecNode farm);
+
+  /// The placement policies by their spec names ("round_robin", "contiguous",
+  /// "cost_based"), one table for the spec, the command line and the reports.
+  static const std::vector<std::string>& policy_names();
+  static Policy policy_of(const std::string& name);  ///< InputError on an unknown name
+  static const char* name_of(Policy p);
 };
 
 }  // namespace fe2

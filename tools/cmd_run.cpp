@@ -9,7 +9,7 @@
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
-#include "tools/unit_spec.h"
+#include "worker/unit_spec.h"
 #include "worker/worker_loop.h"
 
 #include <spdlog/sinks/basic_file_sink.h>
@@ -161,9 +161,7 @@ int run(const RunOptions& o) {
     spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
     if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
     if (!o.policy.empty())
-      spec.farm.policy = o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
-                         : o.policy == "contiguous" ? FarmOptions::Policy::contiguous
-                                                    : FarmOptions::Policy::cost_based;
+      spec.farm.policy = FarmOptions::policy_of(o.policy);
     // spec.json in the output is the spec that ran (farm-sim replays its farm section).
     if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
     if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
@@ -210,9 +208,7 @@ int run(const RunOptions& o) {
       spdlog::info("{}", describe(spec));
       spdlog::info("{} ranks: {} coordinator(s), {} worker rank(s), policy {}", layout.ranks,
                    layout.coordinators, layout.worker_ranks.size(),
-                   spec.farm.policy == FarmOptions::Policy::cost_based ? "cost_based"
-                   : spec.farm.policy == FarmOptions::Policy::round_robin ? "round_robin"
-                                                                           : "contiguous");
+                   FarmOptions::name_of(spec.farm.policy));
     }
     FarmEvaluator points(transport, coords, layout, spec, store.get(), trace.get());
     Simulation sim(spec, points, coords, layout.owned_units(rank));

@@ -70,9 +70,7 @@ FarmOptions farm_options_of_run(const FarmSimOptions& o) {
                                  file, spec.type_name()));
   FarmOptions f = FarmOptions::from_spec(SpecNode(spec, "").child("farm", false, "task farm"));
   if (o.policy)
-    f.policy = *o.policy == "round_robin"  ? FarmOptions::Policy::round_robin
-               : *o.policy == "contiguous" ? FarmOptions::Policy::contiguous
-                                           : FarmOptions::Policy::cost_based;
+    f.policy = FarmOptions::policy_of(*o.policy);
   if (o.rebalance_at)
     f.rebalance_at = *o.rebalance_at == "step" ? FarmOptions::When::step : FarmOptions::When::iteration;
   if (o.latency) f.latency = *o.latency;
@@ -81,15 +79,6 @@ FarmOptions farm_options_of_run(const FarmSimOptions& o) {
   if (o.min_gain) f.min_gain = *o.min_gain;
   if (o.tolerated_imbalance) f.tolerated_imbalance = *o.tolerated_imbalance;
   return f;
-}
-
-const char* policy_name(FarmOptions::Policy p) {
-  switch (p) {
-    case FarmOptions::Policy::round_robin: return "round_robin";
-    case FarmOptions::Policy::contiguous: return "contiguous";
-    case FarmOptions::Policy::cost_based: return "cost_based";
-  }
-  return "?";
 }
 
 }  // namespace
@@ -105,7 +94,7 @@ int farm_sim(const FarmSimOptions& o) {
              "latency {:.1e} s, bandwidth {:.2g} B/s, batch {}; policy {}, rebalance at {}, "
              "tolerated imbalance {}, min gain {}; macro time as measured × {}\n",
              o.dir, measured, in.macro.size(), f.latency, f.bandwidth, f.batch,
-             policy_name(f.policy), f.rebalance_at == FarmOptions::When::step ? "step" : "iteration",
+             FarmOptions::name_of(f.policy), f.rebalance_at == FarmOptions::When::step ? "step" : "iteration",
              f.tolerated_imbalance, f.min_gain, o.macro_scale);
   fmt::print("efficiency 'vs W/4': the paper's strong scaling (same units on W/4 workers as the "
              "base, e.g. 1536 -> 6144);\n'vs balance': Σ work / W over the predicted time.\n\n");

@@ -1,5 +1,6 @@
 // fe2heart: multi-scale FE² heart simulation. See README.md and `fe2heart --help`.
 #include "common/error.h"
+#include "coordinator/FarmOptions.h"
 #include "tools/commands.h"
 
 #include <CLI/CLI.hpp>
@@ -25,7 +26,7 @@ int main(int argc, char** argv) {
                     "coordinator ranks (overrides farm.coordinators in the spec)")
       ->check(CLI::Range(1, 1000000));
   c_run->add_option("--policy", run.policy, "unit placement (overrides farm.policy)")
-      ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
+      ->check(CLI::IsMember(fe2::FarmOptions::policy_names()));
   const std::string memory_help =
       "memory a rank may use, e.g. 8G, 500M or bytes (default: the available memory, "
       "MemAvailable, shared by the ranks of a node); unit models that would not fit are "
@@ -92,7 +93,7 @@ int main(int argc, char** argv) {
   c_sim->add_option("--units-per-worker", sim.units_per_worker, "units per worker (default 1 4)");
   // Farm settings default to the run's own (DIR/spec.json); these flags override them.
   c_sim->add_option("--policy", sim.policy, "placement policy (default: the run's farm.policy)")
-      ->check(CLI::IsMember({"round_robin", "contiguous", "cost_based"}));
+      ->check(CLI::IsMember(fe2::FarmOptions::policy_names()));
   c_sim->add_option("--rebalance-at", sim.rebalance_at, "default: the run's farm.rebalance_at")
       ->check(CLI::IsMember({"iteration", "step"}));
   c_sim->add_option("--latency", sim.latency, "seconds per message (default: the run's farm.latency)")
