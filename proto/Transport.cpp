@@ -22,18 +22,20 @@ namespace {
 double g_stall_timeout = std::numeric_limits<double>::infinity();
 
 /// Polls `done()` until it is true or the liveness limit passes (then false). Spins
-/// briefly (latency of short waits), then naps with growing pauses so a waiting rank
-/// leaves its core to a computing one.
+/// through short waits as MPI's blocking calls do (a napping rank measured 9 % more CPU
+/// per unit job on farm_beam at 2 ranks: its core goes cold), and naps with growing
+/// pauses only once a wait outlasts kSpinSeconds, leaving the core to computing ranks.
 template <class Done>
 bool poll_alive(Done done, double patience) {
+  constexpr double kSpinSeconds = 0.05;
   const double limit = patience * g_stall_timeout;
   const auto t0 = std::chrono::steady_clock::now();
   auto nap = std::chrono::microseconds(10);
-  for (int spins = 0;; ++spins) {
+  for (;;) {
     if (done()) return true;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (waited > limit) return false;
-    if (spins < 2000) continue;
+    if (waited < kSpinSeconds) continue;
     std::this_thread::sleep_for(nap);
     nap = std::min(nap * 2, std::chrono::microseconds(1000));
   }
