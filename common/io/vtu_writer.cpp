@@ -18,6 +18,7 @@ using Buffer = fmt::memory_buffer;
 
 constexpr int kVtkTetra = 10;
 constexpr int kVtkHexahedron = 12;
+constexpr int kVtkQuadraticTetra = 24;
 
 std::string xml_escape(std::string_view s) {
   std::string out;
@@ -63,11 +64,12 @@ void write_data(Buffer& b, const char* section, const VtuFields& data, std::size
   fmt::format_to(std::back_inserter(b), "      </{}>\n", section);
 }
 
-// One Piece of an unstructured grid whose cells all have the same type.
-template <std::size_t N>
+// One Piece of an unstructured grid whose cells all have the same type (N nodes each).
+template <class Cell>
 void write_unstructured(const std::string& path, const std::vector<Vec3>& nodes,
-                        const std::vector<std::array<int, N>>& cells, const std::vector<int>& region,
+                        const std::vector<Cell>& cells, const std::vector<int>& region,
                         int vtk_type, const VtuFields& point_data, const VtuFields& cell_data) {
+  const std::size_t N = cells.empty() ? 0 : cells.front().size();
   const auto out = [](Buffer& b) { return std::back_inserter(b); };
   Buffer b;
   fmt::format_to(out(b), "<?xml version=\"1.0\"?>\n"
@@ -120,7 +122,14 @@ void VtuFields::add_tensor(const std::string& name, const std::vector<Vec9>& val
 
 void write_vtu(const std::string& path, const TetMesh& mesh, const VtuFields& point_data,
                const VtuFields& cell_data) {
-  write_unstructured(path, mesh.nodes, mesh.tets, mesh.region, kVtkTetra, point_data, cell_data);
+  if (mesh.order() == 1) {
+    write_unstructured(path, mesh.nodes, mesh.tets, mesh.region, kVtkTetra, point_data, cell_data);
+    return;
+  }
+  // VTK_QUADRATIC_TETRA takes the nodes in TetMesh::element_nodes order.
+  std::vector<std::vector<int>> cells(mesh.num_tets());
+  for (int e = 0; e < mesh.num_tets(); ++e) cells[e] = mesh.element_nodes(e);
+  write_unstructured(path, mesh.nodes, cells, mesh.region, kVtkQuadraticTetra, point_data, cell_data);
 }
 
 void write_vtu(const std::string& path, const HexMesh& mesh, const VtuFields& point_data,

@@ -35,7 +35,7 @@ class VtuFields {
   std::vector<Field> fields_;
 };
 
-/// Writes the tets (VTK_TETRA = 10) with an Int32 cell array "region" and the given
+/// Writes the tets (VTK_TETRA = 10; VTK_QUADRATIC_TETRA = 24 for a quadratic mesh) with an Int32 cell array "region" and the given
 /// data; each field must have one entry per node (point_data) or per tet (cell_data).
 void write_vtu(const std::string& path, const TetMesh& mesh, const VtuFields& point_data = {},
                const VtuFields& cell_data = {});

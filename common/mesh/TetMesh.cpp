@@ -77,13 +77,30 @@ void check_regions(TetMesh& m, const std::string& source) {
                                  source, m.region.size(), m.tets.size()));
 }
 
-std::vector<int> unique_nodes(const std::vector<std::array<int, 3>>& tris) {
+std::vector<int> unique_nodes(const TetMesh& m, const std::vector<std::array<int, 3>>& tris) {
   std::vector<int> ids;
-  ids.reserve(3 * tris.size());
-  for (const auto& t : tris) ids.insert(ids.end(), t.begin(), t.end());
+  ids.reserve(6 * tris.size());
+  for (const auto& t : tris) {
+    const auto nodes = m.face_nodes(t);
+    ids.insert(ids.end(), nodes.begin(), nodes.end());
+  }
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   return ids;
+}
+
+void check_edges(const TetMesh& m, const std::string& source) {
+  if (m.order() == 1) return;
+  for (const auto& [edge, node] : m.edge_nodes)
+    check_node_index(m, node, source, fmt::format("the node of edge ({}, {})", edge.first, edge.second));
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (const auto& [a, b] : kTetEdges) {
+      const auto key = std::minmax(m.tets[e][a], m.tets[e][b]);
+      if (!m.edge_nodes.count(key))
+        throw InputError(fmt::format("mesh '{}': quadratic element {} has no node on its edge ({}, {}), "
+                                     "expected 10-node tetrahedra throughout",
+                                     source, e, key.first, key.second));
+    }
 }
 
 }  // namespace
@@ -94,12 +111,59 @@ double tet_signed_volume(const TetMesh& m, int e) {
   return (m.nodes[t[1]] - x0).dot((m.nodes[t[2]] - x0).cross(m.nodes[t[3]] - x0)) / 6.0;
 }
 
+int TetMesh::edge_node(int a, int b) const {
+  const auto it = edge_nodes.find(std::minmax(a, b));
+  if (it == edge_nodes.end())
+    throw InputError(fmt::format("mesh: no node on edge ({}, {}), expected a quadratic mesh with "
+                                 "a node on every tet edge",
+                                 a, b));
+  return it->second;
+}
+
+std::vector<int> TetMesh::element_nodes(int e) const {
+  std::vector<int> n(tets[e].begin(), tets[e].end());
+  if (order() == 2)
+    for (const auto& [a, b] : kTetEdges) n.push_back(edge_node(tets[e][a], tets[e][b]));
+  return n;
+}
+
+std::vector<int> TetMesh::face_nodes(const std::array<int, 3>& tri) const {
+  std::vector<int> n(tri.begin(), tri.end());
+  if (order() == 2)
+    for (int a = 0; a < 3; ++a) n.push_back(edge_node(tri[a], tri[(a + 1) % 3]));
+  return n;
+}
+
+std::vector<int> TetMesh::vertices() const {
+  std::vector<char> used(nodes.size(), 0);
+  for (const auto& t : tets)
+    for (int n : t) used[n] = 1;
+  std::vector<int> v;
+  for (int i = 0; i < num_nodes(); ++i)
+    if (used[i]) v.push_back(i);
+  return v;
+}
+
+void make_quadratic(TetMesh& m) {
+  if (m.order() == 2) return;
+  for (const auto& t : m.tets)
+    for (const auto& [a, b] : kTetEdges) {
+      const auto key = std::minmax(t[a], t[b]);
+      if (m.edge_nodes.count(key)) continue;
+      m.edge_nodes[key] = m.num_nodes();
+      m.nodes.push_back(0.5 * (m.nodes[key.first] + m.nodes[key.second]));
+    }
+  // Node sets derived from faces must hold the new edge nodes too (Dirichlet sets).
+  for (const auto& [name, tris] : m.faces) m.node_sets[name] = unique_nodes(m, tris);
+}
+
 void validate_mesh(TetMesh& m, const std::string& source) {
   if (m.nodes.empty() || m.tets.empty())
     throw InputError(fmt::format("mesh '{}': {} nodes and {} tetrahedra, expected a non-empty mesh",
                                  source, m.nodes.size(), m.tets.size()));
   check_nodes_finite(m, source);
   check_tets(m, source);
+  check_edges(m, source);
   check_regions(m, source);
   for (auto& [name, tris] : m.faces)
     for (std::size_t i = 0; i < tris.size(); ++i)
@@ -108,7 +172,7 @@ void validate_mesh(TetMesh& m, const std::string& source) {
     for (int n : ids) check_node_index(m, n, source, fmt::format("node set '{}'", name));
   // An explicitly given node set wins over the one derived from a face of the same name.
   for (const auto& [name, tris] : m.faces)
-    if (!m.node_sets.count(name)) m.node_sets[name] = unique_nodes(tris);
+    if (!m.node_sets.count(name)) m.node_sets[name] = unique_nodes(m, tris);
 }
 
 void orient_faces_outward(TetMesh& m, const std::string& source) {

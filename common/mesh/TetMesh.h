@@ -1,5 +1,9 @@
 #pragma once
-// The macro mesh: 4-node tetrahedra with named node sets and named boundary faces.
+// The macro mesh: tetrahedra with named node sets and named boundary faces.
+// Linear (4-node) or quadratic (10-node): a quadratic mesh keeps the four vertices of
+// each tet in `tets` (geometry, partitions and point location work on them) and adds
+// one node per edge in `edge_nodes`, which may lie off the straight edge (curved,
+// isoparametric geometry, e.g. an ellipsoidal wall).
 #include "common/tensor9.h"
 
 #include <array>
@@ -19,10 +23,31 @@ struct TetMesh {
   std::map<std::string, std::vector<std::array<int, 3>>> faces;
   /// Named node sets (every named face also gives a node set of the same name).
   std::map<std::string, std::vector<int>> node_sets;
+  /// Quadratic meshes only: the node on each edge, keyed by its end vertices (smaller first).
+  std::map<std::pair<int, int>, int> edge_nodes;
 
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   int num_tets() const { return static_cast<int>(tets.size()); }
+  /// 1 (4-node tets) or 2 (10-node tets).
+  int order() const { return edge_nodes.empty() ? 1 : 2; }
+  /// The node on edge (a, b); throws fe2::InputError if the mesh has none there.
+  int edge_node(int a, int b) const;
+  /// The element's nodes in VTK order: linear 4 vertices; quadratic the 4 vertices,
+  /// then edges 01, 12, 02, 03, 13, 23 (VTK_QUADRATIC_TETRA).
+  std::vector<int> element_nodes(int e) const;
+  /// A face triangle's nodes: its 3 vertices, then (quadratic) edges 01, 12, 20
+  /// (VTK_QUADRATIC_TRIANGLE, the order of Gmsh's 6-node triangle).
+  std::vector<int> face_nodes(const std::array<int, 3>& tri) const;
+  /// The distinct vertices of the tets, ascending (all nodes when linear).
+  std::vector<int> vertices() const;
 };
+
+/// Local vertex pairs of the six edges of a tet, in VTK_QUADRATIC_TETRA order.
+inline constexpr std::array<std::array<int, 2>, 6> kTetEdges = {{{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}}};
+
+/// Makes a linear mesh quadratic with straight edges: a new node at the midpoint of
+/// every edge, numbered after the vertices; face node sets gain their edge nodes.
+void make_quadratic(TetMesh& m);
 
 /// Signed volume of tet e: (x1-x0)·((x2-x0)×(x3-x0))/6.
 double tet_signed_volume(const TetMesh& m, int e);

@@ -61,8 +61,10 @@ double grid_coord(double lo, double hi, int i, int n) { return i == n ? hi : lo 
 }  // namespace
 
 TetMesh make_box_mesh(const Vec3& lo, const Vec3& hi, std::array<int, 3> n, int region_slabs_axis,
-                      int region_slabs) {
+                      int region_slabs, int order) {
   check_arguments(lo, hi, n, region_slabs_axis, region_slabs);
+  if (order != 1 && order != 2)
+    throw InputError(fmt::format("{}: order {}: expected 1 (4-node) or 2 (10-node tetrahedra)", kSource, order));
   const auto node_id = [&](int i, int j, int k) { return i + (n[0] + 1) * (j + (n[1] + 1) * k); };
 
   TetMesh m;
@@ -109,6 +111,7 @@ TetMesh make_box_mesh(const Vec3& lo, const Vec3& hi, std::array<int, 3> n, int 
       }
 
   orient_faces_outward(m, kSource);
+  if (order == 2) make_quadratic(m);
   validate_mesh(m, kSource);
   return m;
 }

@@ -125,7 +125,8 @@ class MshLexer {
 
 using DimTag = std::pair<int, int>;  // (dimension, tag) names an entity or a physical group
 
-constexpr int kLine = 1, kTriangle = 2, kTet = 4, kHex = 5, kPoint = 15;
+constexpr int kLine = 1, kTriangle = 2, kTet = 4, kHex = 5, kLine3 = 8, kTriangle6 = 9, kTet10 = 11,
+              kPoint = 15;
 
 int nodes_per_element(int type) {
   switch (type) {
@@ -133,6 +134,9 @@ int nodes_per_element(int type) {
     case kTriangle: return 3;
     case kTet: return 4;
     case kHex: return 8;
+    case kLine3: return 3;
+    case kTriangle6: return 6;
+    case kTet10: return 10;
     case kPoint: return 1;
     default: return 0;  // a type fe2heart does not read
   }
@@ -392,7 +396,7 @@ void check_tet_orientation(const MshData& d, const TetMesh& m, const std::vector
     for (std::size_t i = 0; i < b->tags.size(); ++i, ++e) {
       const double v = tet_signed_volume(m, e);
       if (v > 0.0) continue;
-      const int* n = &b->nodes[4 * i];
+      const int* n = &b->nodes[static_cast<std::size_t>(b->nodes_per) * i];
       throw InputError(fmt::format("{} (node tags {} {} {} {}) is inverted: signed volume {:.6g}, expected > 0",
                                    error_prefix(d, *b, i), d.node_tags[n[0]], d.node_tags[n[1]],
                                    d.node_tags[n[2]], d.node_tags[n[3]], v));
@@ -401,6 +405,8 @@ void check_tet_orientation(const MshData& d, const TetMesh& m, const std::vector
 
 /// Adds the elements of `type` on named physical groups of dimension `dim` to `groups`
 /// (triangles for faces, points or lines for node sets), in compact node numbering.
+/// Of a quadratic element only its first N (vertex) nodes are taken: edge nodes come
+/// from the tets (TetMesh::edge_nodes).
 template <std::size_t N>
 void collect_named(const MshData& d, int type, int dim, const std::vector<int>& index,
                    std::map<std::string, std::vector<std::array<int, N>>>& groups) {
@@ -411,7 +417,7 @@ void collect_named(const MshData& d, int type, int dim, const std::vector<int>& 
     for (std::size_t i = 0; i < b->tags.size(); ++i) {
       std::array<int, N> el{};
       for (std::size_t a = 0; a < N; ++a) {
-        const int p = b->nodes[N * i + a];
+        const int p = b->nodes[static_cast<std::size_t>(b->nodes_per) * i + a];
         if (index[p] < 0)
           throw InputError(fmt::format("{} of physical group '{}' uses node tag {}, which belongs to no "
                                        "tetrahedron; expected named groups to lie on the volume mesh",
@@ -444,29 +450,52 @@ double hex_centre_jacobian(const std::vector<Vec3>& x, const std::array<int, 8>&
 
 TetMesh read_gmsh_tets(const std::string& file) {
   const MshData d = parse_msh_file(file);
-  const auto tet_blocks = d.blocks_of(kTet);
-  if (count_elements(tet_blocks) == 0) fail_no_elements(d, kTet, "4-node tetrahedra");
+  const auto linear = d.blocks_of(kTet);
+  const auto quadratic = d.blocks_of(kTet10);
+  if (count_elements(linear) > 0 && count_elements(quadratic) > 0)
+    throw InputError(fmt::format("mesh file '{}': both 4-node (type 4) and 10-node (type 11) "
+                                 "tetrahedra, expected one order throughout",
+                                 file));
+  const bool is_quadratic = count_elements(quadratic) > 0;
+  const auto tet_blocks = is_quadratic ? quadratic : linear;
+  if (count_elements(tet_blocks) == 0) fail_no_elements(d, kTet, "4-node or 10-node (type 11) tetrahedra");
 
   TetMesh m;
   const std::vector<int> index = compact_nodes(d, tet_blocks, m.nodes);
+  // Gmsh's 10-node tet: vertices 0–3, then edges 01, 12, 20, 30, 32, 31.
+  constexpr std::array<std::array<int, 2>, 6> gmsh_edges = {{{0, 1}, {1, 2}, {2, 0}, {3, 0}, {3, 2}, {3, 1}}};
   for (const ElementBlock* b : tet_blocks) {
     const auto& physicals = d.physicals_of(3, b->entity);
     const int region = physicals.empty() ? 1 : physicals.front();
     for (std::size_t i = 0; i < b->tags.size(); ++i) {
-      const int* n = &b->nodes[4 * i];
+      const int* n = &b->nodes[static_cast<std::size_t>(b->nodes_per) * i];
       m.tets.push_back({index[n[0]], index[n[1]], index[n[2]], index[n[3]]});
       m.region.push_back(region);
+      if (!is_quadratic) continue;
+      for (int k = 0; k < 6; ++k) {
+        const auto key = std::minmax(index[n[gmsh_edges[k][0]]], index[n[gmsh_edges[k][1]]]);
+        const auto [it, added] = m.edge_nodes.emplace(key, index[n[4 + k]]);
+        if (!added && it->second != index[n[4 + k]])
+          throw InputError(fmt::format("{}: node tag {} lies on the edge between node tags {} and {}, "
+                                       "where another element has a different node; expected a "
+                                       "conforming mesh",
+                                       error_prefix(d, *b, i), d.node_tags[n[4 + k]],
+                                       d.node_tags[n[gmsh_edges[k][0]]], d.node_tags[n[gmsh_edges[k][1]]]));
+      }
     }
   }
   check_tet_orientation(d, m, tet_blocks);
   for (const auto& [dim_tag, name] : d.physical_names)
     if (dim_tag.first == 3) m.region_names[dim_tag.second] = name;
 
-  collect_named(d, kTriangle, 2, index, m.faces);
+  collect_named(d, is_quadratic ? kTriangle6 : kTriangle, 2, index, m.faces);
   std::map<std::string, std::vector<std::array<int, 1>>> points;
   std::map<std::string, std::vector<std::array<int, 2>>> lines;
+  std::map<std::string, std::vector<std::array<int, 3>>> lines3;
   collect_named(d, kPoint, 0, index, points);
   collect_named(d, kLine, 1, index, lines);
+  collect_named(d, kLine3, 1, index, lines3);
+  add_node_sets(lines3, m.node_sets);
   add_node_sets(points, m.node_sets);
   add_node_sets(lines, m.node_sets);
   for (auto& [name, ids] : m.node_sets) {

@@ -11,12 +11,14 @@
 namespace fe2 {
 
 /// The macro mesh of a Gmsh file:
-///  - 4-node tetrahedra (type 4); region = first physical tag of their volume entity
-///    (1 if it has none); region_names = names of physical volumes;
-///  - 3-node triangles (type 2) on surface entities with a named physical group become
-///    faces[name] (oriented outward, see orient_faces_outward);
+///  - 4-node tetrahedra (type 4) or 10-node tetrahedra (type 11, a quadratic mesh whose
+///    edge nodes go to TetMesh::edge_nodes; not both); region = first physical tag of
+///    their volume entity (1 if it has none); region_names = names of physical volumes;
+///  - 3-node triangles (type 2; type 9, 6-node, in a quadratic mesh) on surface entities
+///    with a named physical group become faces[name] (oriented outward, see
+///    orient_faces_outward; their node sets include the edge nodes);
 ///  - points (type 15) on named physical points and the nodes of 2-node lines (type 1)
-///    on named physical curves become node_sets[name].
+///    on named physical curves (3-node lines, type 8, in a quadratic mesh) become node_sets[name].
 /// Nodes are those of the tets, renumbered 0.. in file order. Elements of other types
 /// are ignored. Throws InputError if there are no tets or a tet is inverted.
 TetMesh read_gmsh_tets(const std::string& file);
