@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""An idealized biventricular (BiV) mesh, made with Gmsh's OpenCASCADE kernel.
+
+The classic idealized BiV: four ellipsoids with the long axis along z, all cut by the
+base plane z = BASE_Z (the apex toward -z, as in Land et al. 2015, problem 2):
+  LV endo and LV epi centred on the z axis (the benchmark LV: 7/17 mm and 10/20 mm),
+  RV endo and RV epi shifted along +x, wider than the LV, so the RV sits on the LV free
+  wall and its cavity is the part of the RV endo ellipsoid outside the LV epicardium:
+    solid = (LV_epi ∪ RV_epi) − LV_endo − (RV_endo − LV_epi) − {z > BASE_Z}.
+The septum is the LV wall between the two cavities.
+
+Physical groups: volume `myocardium`; surfaces `lv_endo` (the LV cavity), `rv_endo` (the
+RV cavity: RV free-wall endocardium and the septum's RV side), `epi` (everything
+outside), `base` (z = BASE_Z). Writes MSH 4.1 ASCII, linear or quadratic (10-node tets,
+6-node triangles, nodes on the curved CAD surfaces), readable by fe2heart's
+read_gmsh_tets. Lengths in mm.
+
+  /usr/bin/python3 tools/meshes/biv_mesh.py configs/meshes/biv_coarse.msh --size 2.5 [--order 2]
+
+Needs Debian's python3-gmsh (tools/bootstrap.sh installs it).
+"""
+import argparse
+import sys
+
+import gmsh
+
+BASE_Z = 5.0
+# (centre x, semi-axis x, semi-axis y, semi-axis z); all centred at y = z = 0.
+LV_ENDO = (0.0, 7.0, 7.0, 17.0)
+LV_EPI = (0.0, 10.0, 10.0, 20.0)
+RV_ENDO = (4.0, 12.0, 10.0, 15.0)
+RV_EPI = (4.0, 15.0, 13.0, 18.0)
+
+
+def level(e, p):
+    """(x - cx)²/ax² + y²/ay² + z²/az² − 1: zero on ellipsoid e, negative inside."""
+    cx, ax, ay, az = e
+    return ((p[0] - cx) / ax) ** 2 + (p[1] / ay) ** 2 + (p[2] / az) ** 2 - 1.0
+
+
+def ellipsoid(occ, e):
+    cx, ax, ay, az = e
+    tag = occ.addSphere(cx, 0.0, 0.0, 1.0)
+    occ.dilate([(3, tag)], cx, 0.0, 0.0, ax, ay, az)
+    return (3, tag)
+
+
+def build_geometry():
+    occ = gmsh.model.occ
+    lv_endo, lv_epi, rv_endo, rv_epi = (ellipsoid(occ, e) for e in (LV_ENDO, LV_EPI, RV_ENDO, RV_EPI))
+    lv_epi_tool = occ.copy([lv_epi])
+    rv_cavity, _ = occ.cut([rv_endo], lv_epi_tool)
+    outer, _ = occ.fuse([lv_epi], [rv_epi])
+    above = occ.addBox(-100.0, -100.0, BASE_Z, 200.0, 200.0, 100.0)
+    solid, _ = occ.cut(outer, [lv_endo] + rv_cavity + [(3, above)])
+    occ.synchronize()
+    if len(solid) != 1:
+        sys.exit(f"biv_mesh.py: the boolean operations gave {len(solid)} volumes, expected 1")
+    return solid[0][1]
+
+
+def classify(surface):
+    """The name of a boundary surface, from one of its interior mesh nodes."""
+    _, coords, _ = gmsh.model.mesh.getNodes(2, surface, includeBoundary=False)
+    if len(coords) < 3:
+        sys.exit(f"biv_mesh.py: surface {surface} has no interior mesh node; use a smaller --size")
+    p = coords[0:3]
+    if abs(p[2] - BASE_Z) < 1e-6:
+        return "base"
+    distances = {name: abs(level(e, p)) for name, e in
+                 (("lv_endo", LV_ENDO), ("lv_epi", LV_EPI), ("rv_endo", RV_ENDO), ("rv_epi", RV_EPI))}
+    on = min(distances, key=distances.get)
+    if distances[on] > 1e-3:
+        sys.exit(f"biv_mesh.py: surface {surface} (node {p}) lies on no ellipsoid and not on the base")
+    if on == "lv_epi":  # the septum's RV side faces the RV cavity; the rest is outside
+        return "rv_endo" if level(RV_ENDO, p) < 0.0 else "epi"
+    return {"lv_endo": "lv_endo", "rv_endo": "rv_endo", "rv_epi": "epi"}[on]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("output", help="the .msh file to write")
+    parser.add_argument("--size", type=float, default=2.5, help="target element size in mm (default 2.5)")
+    parser.add_argument("--order", type=int, choices=(1, 2), default=1, help="element order (default 1)")
+    args = parser.parse_args()
+    if not args.size > 0.0:
+        sys.exit(f"biv_mesh.py: --size {args.size}: expected a size > 0 (mm)")
+
+    gmsh.initialize(["biv_mesh.py"])
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.option.setNumber("General.NumThreads", 1)  # one thread: the same mesh every run
+        gmsh.model.add("biv")
+        volume = build_geometry()
+        gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
+        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * args.size)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # elements per 2π of curvature
+        gmsh.model.mesh.generate(3)
+        if args.order == 2:
+            gmsh.model.mesh.setOrder(2)
+        groups = {}
+        for dim, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
+            groups.setdefault(classify(tag), []).append(tag)
+        for needed in ("lv_endo", "rv_endo", "epi", "base"):
+            if needed not in groups:
+                sys.exit(f"biv_mesh.py: no surface classified as {needed}; check the ellipsoids")
+        for name in sorted(groups):
+            gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, groups[name]), name)
+        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [volume]), "myocardium")
+        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+        gmsh.option.setNumber("Mesh.Binary", 0)
+        gmsh.option.setNumber("Mesh.SaveAll", 0)  # only the physical groups
+        gmsh.write(args.output)
+        print(f"{args.output}: order {args.order}, {len(gmsh.model.mesh.getNodes()[0])} nodes, "
+              f"surfaces {', '.join(f'{n} ({len(t)})' for n, t in sorted(groups.items()))}")
+    finally:
+        gmsh.finalize()
+
+
+if __name__ == "__main__":
+    main()
