@@ -18,18 +18,19 @@ double ramp_factor(Ramp ramp, double t, double t_end) {
 }
 
 Mat3 FrameSpec::at(const Vec3& X) const {
-  Vec3 f = fibre, s = sheet;
-  if (rotating) {
-    const double xi = std::clamp((X.dot(coordinate) - c0) / (c1 - c0), 0.0, 1.0);
-    const Eigen::AngleAxisd rot(angle0 + xi * (angle1 - angle0), axis);
-    f = rot * f;
-    s = rot * s;
-  }
-  Mat3 Q;
-  Q.col(0) = f;
-  Q.col(1) = s;
-  Q.col(2) = f.cross(s);
-  return Q;
+  FE2_CHECK(field.kind == FrameFieldSpec::Kind::constant || field.kind == FrameFieldSpec::Kind::rotating,
+            "frame kinds 'file' and 'rule' need make_frame_field(spec.frame.field, mesh), not FrameSpec::at");
+  AnalyticFrame a;  // the rule lives in common/fibres/AnalyticFrame
+  a.fibre = fibre;
+  a.sheet = sheet;
+  a.rotating = rotating;
+  a.axis = axis;
+  a.coordinate = coordinate;
+  a.c0 = c0;
+  a.c1 = c1;
+  a.angle0 = angle0;
+  a.angle1 = angle1;
+  return a.at(X);
 }
 
 int RunSpec::model_index_of_tet(int e) const {
@@ -50,12 +51,6 @@ Vec3 vec3(SpecNode& s, const std::string& key, std::optional<Vec3> def, const st
   if (def) d = std::vector<double>{(*def)[0], (*def)[1], (*def)[2]};
   const auto v = s.numbers(key, 3, d, help);
   return Vec3(v[0], v[1], v[2]);
-}
-
-Vec3 unit_vec3(SpecNode& s, const std::string& key, Vec3 def, const std::string& help) {
-  const Vec3 v = vec3(s, key, def, help);
-  if (!(v.norm() > 0)) s.fail(key, "a non-zero vector");
-  return v.normalized();
 }
 
 Ramp read_ramp(SpecNode& s) {
@@ -99,27 +94,22 @@ void read_mesh(SpecNode m, RunSpec& spec) {
 }
 
 void read_frame(SpecNode f, RunSpec& spec) {
+  // Every kind is read in common/fibres/frame_spec.cpp; a fibre file's tags refer to
+  // the Gmsh mesh file (generated meshes: tag = index + 1).
+  const bool gmsh = spec.raw.contains("mesh") && spec.raw["mesh"].is_object() &&
+                    spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
   FrameSpec& fr = spec.frame;
-  const std::string kind = f.choice("kind", "constant", {"constant", "rotating"},
-                                    "fibre frame rule");
-  fr.fibre = unit_vec3(f, "fibre", Vec3::UnitX(), "fibre direction f (unit axis 1)");
-  const Vec3 s = unit_vec3(f, "sheet", Vec3::UnitY(), "sheet direction s (unit axis 2)");
-  fr.sheet = (s - s.dot(fr.fibre) * fr.fibre);
-  if (!(fr.sheet.norm() > 1e-8)) f.fail("sheet", "a direction not parallel to 'fibre'");
-  fr.sheet.normalize();
-  if (kind == "rotating") {
-    fr.rotating = true;
-    fr.axis = unit_vec3(f, "axis", Vec3::UnitZ(), "rotation axis of the fibres");
-    fr.coordinate = unit_vec3(f, "coordinate", Vec3::UnitY(),
-                              "direction along which the angle varies (transmural)");
-    const auto from = f.numbers("from", 2, std::nullopt, "[coordinate, angle in degrees]");
-    const auto to = f.numbers("to", 2, std::nullopt, "[coordinate, angle in degrees]");
-    if (!(to[0] != from[0])) f.fail("to", "a coordinate different from 'from'");
-    fr.c0 = from[0];
-    fr.c1 = to[0];
-    fr.angle0 = from[1] * M_PI / 180.0;
-    fr.angle1 = to[1] * M_PI / 180.0;
-  }
+  fr.field = read_frame_field_spec(f, spec.mesh, spec.base_dir, gmsh ? spec.mesh_source : "");
+  const AnalyticFrame& a = fr.field.analytic;
+  fr.fibre = a.fibre;
+  fr.sheet = a.sheet;
+  fr.rotating = a.rotating;
+  fr.axis = a.axis;
+  fr.coordinate = a.coordinate;
+  fr.c0 = a.c0;
+  fr.c1 = a.c1;
+  fr.angle0 = a.angle0;
+  fr.angle1 = a.angle1;
   f.finish();
 }
 

@@ -6,6 +6,7 @@
 // A scene names its effects; an effect that is off allocates and assembles nothing:
 //   point models (FE² units or the macro law, per region), Dirichlet conditions,
 //   follower pressure, inertia (Newmark), probes.
+#include "common/fibres/frame_spec.h"
 #include "common/materials/Material.h"
 #include "common/mesh/TetMesh.h"
 #include "common/spec/SpecNode.h"
@@ -37,8 +38,11 @@ struct PressureSpec {
 };
 
 /// Fibre frame rule: constant, or (f0, s0) rotated about `axis` by an angle varying
-/// linearly with X·coordinate between two planes (a transmural helix rule).
+/// linearly with X·coordinate between two planes (a transmural helix rule). `field`
+/// holds every kind (also "file" and "rule"): make_frame_field(field, mesh) builds the
+/// FrameField (common/fibres/), which replaces at() once the macro side calls it.
 struct FrameSpec {
+  FrameFieldSpec field;
   Vec3 fibre = Vec3::UnitX();
   Vec3 sheet = Vec3::UnitY();
   bool rotating = false;

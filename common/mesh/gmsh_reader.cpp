@@ -149,6 +149,17 @@ struct ElementBlock {
   std::vector<int> nodes;       ///< nodes_per per element, as positions in MshData::node_tags
 };
 
+/// One $NodeData or $ElementData section (a post-processing view at one time step).
+struct DataView {
+  bool on_elements = false;     ///< $ElementData (else $NodeData)
+  std::string name;             ///< its first string tag
+  int line = 0;                 ///< file line of the section header
+  int components = 0;
+  std::vector<long long> tags;  ///< node or element tag of each entry
+  std::vector<int> lines;       ///< file line of each entry
+  std::vector<double> values;   ///< components per entry
+};
+
 struct MshData {
   std::string file;
   std::map<DimTag, std::string> physical_names;
@@ -158,6 +169,7 @@ struct MshData {
   std::unordered_map<long long, int> node_position;     ///< node tag -> index in node_tags
   std::vector<ElementBlock> blocks;                     ///< blocks of the element types we read
   std::set<int> element_types;                          ///< every element type in the file
+  std::vector<DataView> views;                          ///< $NodeData / $ElementData sections
 
   std::vector<const ElementBlock*> blocks_of(int type) const {
     std::vector<const ElementBlock*> out;
@@ -297,6 +309,33 @@ void parse_elements(MshLexer& lex, MshData& d) {
   lex.expect("$EndElements");
 }
 
+// $NodeData/$ElementData: string tags (the first is the view name), real tags (time),
+// integer tags (time step, components, entries[, partition]), then "tag v1 .. vc" lines.
+void parse_data_view(MshLexer& lex, MshData& d, const std::string& section) {
+  DataView v;
+  v.on_elements = section == "ElementData";
+  v.line = lex.line();
+  const long long num_strings = lex.integer("the number of string tags", 0, 1000);
+  for (long long i = 0; i < num_strings; ++i) {
+    std::string t = lex.quoted("a string tag (the view name)");
+    if (i == 0) v.name = std::move(t);
+  }
+  const long long num_reals = lex.integer("the number of real tags", 0, 1000);
+  for (long long i = 0; i < num_reals; ++i) lex.real("a real tag (time)");
+  const long long num_ints = lex.integer("the number of integer tags", 3, 1000);
+  lex.integer("the time step");
+  v.components = lex.small_int("the number of components", 1, 9);
+  const long long n = lex.integer("the number of entries", 0, INT_MAX);
+  for (long long i = 3; i < num_ints; ++i) lex.integer("an integer tag");
+  for (long long i = 0; i < n; ++i) {
+    v.tags.push_back(lex.integer(v.on_elements ? "an element tag" : "a node tag", 1, LLONG_MAX));
+    v.lines.push_back(lex.line());
+    for (int c = 0; c < v.components; ++c) v.values.push_back(lex.real("a data value"));
+  }
+  lex.expect("$End" + section);
+  d.views.push_back(std::move(v));
+}
+
 void skip_section(MshLexer& lex, const std::string& name) {
   const std::string end = "$End" + name;
   while (lex.token(end) != end) {
@@ -313,7 +352,7 @@ std::string read_file_text(const std::string& file) {
   return text.str();
 }
 
-MshData parse_msh_file(const std::string& file) {
+MshData parse_msh_file(const std::string& file, bool require_mesh = true) {
   MshLexer lex(read_file_text(file), file);
   MshData d;
   d.file = file;
@@ -340,13 +379,15 @@ MshData parse_msh_file(const std::string& file) {
     } else if (name == "Elements") {
       if (!seen.count("Nodes")) lex.fail("$Elements before $Nodes, expected $Nodes first");
       parse_elements(lex, d);
+    } else if (name == "NodeData" || name == "ElementData") {
+      parse_data_view(lex, d, name);
     } else if (name == "PartitionedEntities") {
       lex.fail("partitioned mesh ($PartitionedEntities), expected an unpartitioned mesh");
     } else {
-      skip_section(lex, name);  // $Comments, $Periodic, $NodeData, ...: not ours to read
+      skip_section(lex, name);  // $Comments, $Periodic, $ElementNodeData, ...: not ours to read
     }
   }
-  if (!seen.count("Elements"))
+  if (require_mesh && !seen.count("Elements"))
     throw InputError(fmt::format("mesh file '{}': no $Nodes and $Elements sections, expected a Gmsh MSH 4.1 mesh",
                                  file));
   return d;
@@ -555,6 +596,55 @@ HexMesh read_gmsh_hexes(const std::string& file) {
     h.hi = h.hi.cwiseMax(x);
   }
   return h;
+}
+
+GmshTags read_gmsh_tags(const std::string& file) {
+  const MshData d = parse_msh_file(file);
+  // The same tets and node numbering as read_gmsh_tets (which refuses mixed orders).
+  const auto quadratic = d.blocks_of(kTet10);
+  const auto blocks = count_elements(quadratic) > 0 ? quadratic : d.blocks_of(kTet);
+  if (count_elements(blocks) == 0) fail_no_elements(d, kTet, "4-node tetrahedra (or 10-node, type 11)");
+  GmshTags t;
+  std::vector<Vec3> nodes;
+  const std::vector<int> index = compact_nodes(d, blocks, nodes);
+  t.nodes.resize(nodes.size());
+  for (std::size_t p = 0; p < index.size(); ++p)
+    if (index[p] >= 0) t.nodes[index[p]] = d.node_tags[p];
+  for (const ElementBlock* b : blocks) t.elements.insert(t.elements.end(), b->tags.begin(), b->tags.end());
+  return t;
+}
+
+GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, const std::string& name) {
+  const MshData d = parse_msh_file(file, /*require_mesh=*/false);
+  const bool elements = on == GmshDataOn::elements;
+  const char* section = elements ? "$ElementData" : "$NodeData";
+  const DataView* found = nullptr;
+  std::vector<std::string> names;
+  for (const DataView& v : d.views) {
+    if (v.on_elements != elements) continue;
+    names.push_back("\"" + v.name + "\"");
+    if (v.name != name) continue;
+    if (found)
+      throw InputError(fmt::format("file '{}' line {}: a second {} view \"{}\" (the first is at line {}), "
+                                   "expected one (a single time step)",
+                                   file, v.line, section, name, found->line));
+    found = &v;
+  }
+  if (!found)
+    throw InputError(fmt::format("file '{}': no {} view named \"{}\" (its {} views: {}), expected one with "
+                                 "3 components per {}",
+                                 file, section, name, section,
+                                 names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")),
+                                 elements ? "element" : "node"));
+  if (found->components != 3)
+    throw InputError(fmt::format("file '{}' line {}: {} view \"{}\" has {} components, expected 3 (a vector)", file,
+                                 found->line, section, name, found->components));
+  GmshVectorView out;
+  out.tags = found->tags;
+  out.lines = found->lines;
+  for (std::size_t i = 0; i < found->tags.size(); ++i)
+    out.values.emplace_back(found->values[3 * i], found->values[3 * i + 1], found->values[3 * i + 2]);
+  return out;
 }
 
 }  // namespace fe2

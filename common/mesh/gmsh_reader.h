@@ -2,11 +2,13 @@
 // Readers for ASCII Gmsh MSH 4.1 files (https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format).
 // Binary files, other versions and partitioned meshes are rejected with an InputError
 // that names the file, the line and what was expected. Sections other than
-// $MeshFormat, $PhysicalNames, $Entities, $Nodes and $Elements are skipped.
+// $MeshFormat, $PhysicalNames, $Entities, $Nodes, $Elements, $NodeData and
+// $ElementData are skipped.
 #include "common/mesh/HexMesh.h"
 #include "common/mesh/TetMesh.h"
 
 #include <string>
+#include <vector>
 
 namespace fe2 {
 
@@ -30,5 +32,26 @@ TetMesh read_gmsh_tets(const std::string& file);
 /// box of the hex nodes. Throws InputError if there are no hexes, one is inverted, or
 /// a hex entity belongs to no physical volume.
 HexMesh read_gmsh_hexes(const std::string& file);
+
+/// File tags of the tets and nodes of a Gmsh mesh, in the numbering read_gmsh_tets
+/// gives them: elements[e] is the tag of TetMesh tet e, nodes[i] that of node i.
+struct GmshTags {
+  std::vector<long long> elements, nodes;
+};
+GmshTags read_gmsh_tags(const std::string& file);
+
+enum class GmshDataOn { elements, nodes };
+
+/// A 3-component view of a Gmsh file: the $ElementData or $NodeData section whose
+/// first string tag is `name` (e.g. "fibre"), entries keyed by element or node tag in
+/// file order (map them with read_gmsh_tags of the mesh). The file need not hold a mesh.
+/// Throws InputError naming the file if no such view exists (listing those that do),
+/// if it appears twice (several time steps) or has other than 3 components.
+struct GmshVectorView {
+  std::vector<long long> tags;
+  std::vector<Vec3> values;
+  std::vector<int> lines;  ///< file line of each entry, for messages
+};
+GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, const std::string& name);
 
 }  // namespace fe2

@@ -109,6 +109,14 @@ Schema micro_unit() {
   return s;
 }
 
+// The fixed axes of the constant and rotating frames.
+std::pair<std::string, Schema> frame_fibre() {
+  return {"fibre", schema::numbers(3, std::vector<double>{1, 0, 0}, "fibre direction f (unit axis 1)")};
+}
+std::pair<std::string, Schema> frame_sheet() {
+  return {"sheet", schema::numbers(3, std::vector<double>{0, 1, 0}, "sheet direction s (unit axis 2)")};
+}
+
 Schema ramp() {
   return choice("linear", {"linear", "constant"},
                 "value(t) = value·t/t_end (linear) or value (constant)");
@@ -138,17 +146,34 @@ Schema make_run_spec_schema() {
                 {"gmsh", {{"file", string(nullopt, "Gmsh 4.1 ASCII mesh file")}}}})},
        {"frame",
         object(false, "material frame (fibre, sheet, normal)",
-               {{"kind", choice("constant", {"constant", "rotating"}, "fibre frame rule")},
-                {"fibre", numbers(3, std::vector<double>{1, 0, 0}, "fibre direction f (unit axis 1)")},
-                {"sheet", numbers(3, std::vector<double>{0, 1, 0}, "sheet direction s (unit axis 2)")}},
+               {{"kind", choice("constant", {"constant", "rotating", "file", "rule"}, "fibre frame rule")}},
                "kind",
-               {{"constant", {}},
+               {{"constant", {frame_fibre(), frame_sheet()}},
                 {"rotating",
-                 {{"axis", numbers(3, std::vector<double>{0, 0, 1}, "rotation axis of the fibres")},
+                 {frame_fibre(), frame_sheet(),
+                  {"axis", numbers(3, std::vector<double>{0, 0, 1}, "rotation axis of the fibres")},
                   {"coordinate", numbers(3, std::vector<double>{0, 1, 0},
                                          "direction along which the angle varies (transmural)")},
                   {"from", numbers(2, nullopt, "[coordinate, angle in degrees]")},
-                  {"to", numbers(2, nullopt, "[coordinate, angle in degrees]")}}}})},
+                  {"to", numbers(2, nullopt, "[coordinate, angle in degrees]")}}},
+                {"file",
+                 {{"file", string(nullopt, "fibre file: Gmsh MSH 4.1 views or CSV")},
+                  {"format", choice("gmsh", {"gmsh", "csv"},
+                                    "gmsh: $ElementData/$NodeData views; csv: lines tag,fx,fy,fz,sx,sy,sz")},
+                  {"per", choice("element", {"element", "node"},
+                                 "one fibre and sheet per element, or per node (interpolated)")},
+                  {"fibre_view", string("fibre", "name of the Gmsh view of fibre vectors")},
+                  {"sheet_view", string("sheet", "name of the Gmsh view of sheet vectors")}}},
+                {"rule",
+                 {{"alpha_endo", number(60.0, Range::closed(-180, 180), "helix angle on the endocardium (degrees)")},
+                  {"alpha_epi", number(-60.0, Range::closed(-180, 180), "helix angle on the epicardium (degrees)")},
+                  {"beta_endo", number(0.0, Range::closed(-180, 180), "sheet angle on the endocardium (degrees)")},
+                  {"beta_epi", number(0.0, Range::closed(-180, 180), "sheet angle on the epicardium (degrees)")},
+                  {"endo", string("endo", "named surface of the (LV) endocardium: φ = 0")},
+                  {"epi", string("epi", "named surface of the epicardium: φ = 1")},
+                  {"base", string("base", "named surface of the base: ψ = 1")},
+                  {"apex", string("apex", "named node set (or surface) of the apex: ψ = 0")},
+                  {"rv_endo", string("", "named surface of the RV endocardium (biventricular); \"\": LV only")}}}})},
        {"models",
         map(true, "point models by name", "name",
             object(true, "a point model",

@@ -1,0 +1,540 @@
+// Fibre fields (common/fibres/): the rule-based (Bayer 2012) frame on a slab whose
+// endo/epi/base/apex are box faces (exact answers: φ and ψ are linear there), Bayer's
+// bislerp, file-given frames (Gmsh views, CSV) round-tripping bit for bit, bad fibre
+// files with their messages, the spec keys and the VTU cell vectors.
+#include "common/error.h"
+#include "common/fibres/AnalyticFrame.h"
+#include "common/fibres/FileFrame.h"
+#include "common/fibres/RuleFrame.h"
+#include "common/fibres/frame_output.h"
+#include "common/fibres/frame_spec.h"
+#include "common/io/vtu_writer.h"
+#include "common/mesh/box_mesh.h"
+#include "common/mesh/gmsh_reader.h"
+#include "common/spec/spec_schemas.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace fe2 {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDeg = M_PI / 180.0;
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = fs::temp_directory_path() / fmt::format("fe2_{}_{}_{}", info->test_suite_name(), info->name(), getpid());
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  fs::path path_;
+};
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+template <class F>
+std::string input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "nothing thrown";
+}
+
+// The slab [0,1]x[0,2]x[0,3]: endo = xmin, epi = xmax, apex = zmin, base = zmax. Then
+// φ = x and ψ = z/3 exactly (P1 holds linear fields), so t = e_x, l = e_z, c = l × t = e_y.
+TetMesh slab(int order = 1) { return make_box_mesh(Vec3(0, 0, 0), Vec3(1, 2, 3), {3, 4, 5}, -1, 1, order); }
+
+RuleFrameOptions slab_rule() {
+  RuleFrameOptions o;
+  o.endo = "xmin";
+  o.epi = "xmax";
+  o.apex = "zmin";
+  o.base = "zmax";
+  return o;
+}
+
+/// Helix angle (degrees) of f against the slab's geometric axes c = e_y, l = e_z.
+double helix_deg(const Mat3& Q) { return std::atan2(Q(2, 0), Q(1, 0)) / kDeg; }
+
+/// Points of the faces of the tets lying in the plane x = x0: (element, λ) at the face centroid.
+std::vector<std::pair<int, Bary>> face_points(const TetMesh& m, double x0) {
+  std::vector<std::pair<int, Bary>> out;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    Bary l{};
+    int on = 0;
+    for (int a = 0; a < 4; ++a)
+      if (std::abs(m.nodes[m.tets[e][a]][0] - x0) < 1e-12) {
+        l[a] = 1.0 / 3.0;
+        ++on;
+      }
+    if (on == 3) out.push_back({e, l});
+  }
+  return out;
+}
+
+Vec3 point(const TetMesh& m, int e, const Bary& l) {
+  Vec3 X = Vec3::Zero();
+  for (int a = 0; a < 4; ++a) X += l[a] * m.nodes[m.tets[e][a]];
+  return X;
+}
+
+TEST(RuleFrame, HelixAngleIsAlphaEndoOnEndoAndAlphaEpiOnEpi) {
+  const TetMesh m = slab();
+  const RuleFrame rule(m, slab_rule());
+  const auto endo = face_points(m, 0.0), epi = face_points(m, 1.0);
+  ASSERT_EQ(endo.size(), 2u * 4 * 5);  // two triangles per cell face
+  ASSERT_EQ(epi.size(), 2u * 4 * 5);
+  for (const auto& [e, l] : endo) {
+    EXPECT_NEAR(helix_deg(rule.at(e, l, point(m, e, l))), 60.0, 1e-6) << "endo, element " << e;
+    EXPECT_EQ(rule.transmural(e, l), 0.0);
+  }
+  for (const auto& [e, l] : epi) EXPECT_NEAR(helix_deg(rule.at(e, l, point(m, e, l))), -60.0, 1e-6) << "epi, element " << e;
+}
+
+TEST(RuleFrame, FibresUnitOrthogonalToTransmuralSheetsWithSheetAngle) {
+  const TetMesh m = slab();
+  RuleFrameOptions o = slab_rule();
+  o.alpha_endo = 50;
+  o.alpha_epi = -70;
+  const RuleFrame rule(m, o);
+  o.beta_endo = 10;
+  o.beta_epi = -30;
+  const RuleFrame tilted(m, o);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    Bary l{u(rng), u(rng), u(rng), u(rng)};
+    const double sum = l[0] + l[1] + l[2] + l[3];
+    for (double& x : l) x /= sum;
+    const Vec3 X = point(m, e, l);
+    const Mat3 Q = rule.at(e, l, X);
+    EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12) << e;
+    EXPECT_NEAR(Q.determinant(), 1.0, 1e-12) << e;
+    EXPECT_NEAR(Q.col(1).dot(Vec3::UnitX()), 1.0, 1e-12) << "sheet transmural, element " << e;
+    EXPECT_NEAR(helix_deg(Q), 50.0 - 120.0 * X[0], 1e-9) << "α(φ) linear through the wall, element " << e;
+    // β tilts the sheet about the fibre, away from the transmural direction by β(φ).
+    const Mat3 T = tilted.at(e, l, X);
+    EXPECT_NEAR((T.col(0) - Q.col(0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(std::acos(std::clamp(T.col(1).dot(Vec3::UnitX()), -1.0, 1.0)) / kDeg, std::abs(10.0 - 40.0 * X[0]),
+                1e-6);
+  }
+}
+
+TEST(RuleFrame, ApicoBasalFallbackWhereGradPsiIsParallelToTransmural) {
+  // ψ along x as well (apex = endo side, base = epi side): ∇ψ ∥ ∇φ, so l comes from the
+  // long axis (apex centroid → base centroid = e_x) made orthogonal to t, and failing
+  // that from any direction orthogonal to t: still an orthonormal frame, sheet transmural.
+  const TetMesh m = slab();
+  RuleFrameOptions o = slab_rule();
+  o.apex = "xmin";
+  o.base = "xmax";
+  const RuleFrame rule(m, o);
+  const Mat3 Q = rule.at(0, kCentroid, point(m, 0, kCentroid));
+  EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(Q.col(1).dot(Vec3::UnitX()), 1.0, 1e-12);
+}
+
+TEST(RuleFrame, MissingOrTouchingSurfacesAreInputErrors) {
+  const TetMesh m = slab();
+  RuleFrameOptions o = slab_rule();
+  o.endo = "endo";
+  EXPECT_NE(input_error([&] { RuleFrame r(m, o); }).find("'endo' = \"endo\" is not a named surface or node set of the mesh"),
+            std::string::npos);
+  o = slab_rule();
+  o.epi = "ymin";  // shares the edge x = 0, y = 0 with endo = xmin
+  const std::string msg = input_error([&] { RuleFrame r(m, o); });
+  EXPECT_NE(msg.find("frame rule, transmural φ: node"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("lies on both 'xmin' (value 0) and 'ymin' (value 1)"), std::string::npos) << msg;
+}
+
+TEST(RuleFrame, QuadraticMeshGivesTheSameFrames) {
+  const TetMesh m1 = slab(1), m2 = slab(2);
+  const RuleFrame r1(m1, slab_rule()), r2(m2, slab_rule());
+  for (int e = 0; e < m1.num_tets(); e += 7)
+    EXPECT_NEAR((r1.at(e, kCentroid, Vec3()) - r2.at(e, kCentroid, Vec3())).norm(), 0.0, 1e-12);
+}
+
+Mat3 turn(const Vec3& axis, double deg) { return Eigen::AngleAxisd(deg * kDeg, axis.normalized()).toRotationMatrix(); }
+
+TEST(Bislerp, EndsMidpointAndFrameSymmetries) {
+  const Mat3 Q0 = turn(Vec3(1, 2, 3), 40);
+  const Mat3 Qa = Q0 * turn(Vec3::UnitZ(), 20), Qb = Q0 * turn(Vec3::UnitZ(), 80);
+  EXPECT_NEAR((bislerp(&Qa, &Qb, 0.0) - Qa).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((bislerp(&Qa, &Qb, 1.0) - Qb).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((bislerp(&Qa, &Qb, 0.5) - Q0 * turn(Vec3::UnitZ(), 50)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((bislerp(&Qa, nullptr, 0.3) - Qa).norm(), 0.0, 0.0);
+  // Qb turned by π about its own fibre axis is the same fibre/sheet lines: the
+  // interpolation must not swing through 180°, so the fibre line stays near both.
+  const Mat3 Qflip = Qb * turn(Vec3::UnitX(), 180);
+  const Mat3 mid = bislerp(&Qa, &Qflip, 0.5);
+  EXPECT_NEAR(std::abs(mid.col(0).dot((Q0 * turn(Vec3::UnitZ(), 50)).col(0))), 1.0, 1e-12);
+  EXPECT_NEAR(std::abs(mid.col(2).dot(Q0.col(2))), 1.0, 1e-12);
+}
+
+TEST(RuleFrame, BiventricularFramesAreOrthonormalAndMatchBayerOnTheSurfaces) {
+  // A slab with the LV endo at x = 0, the RV endo at x = 2 and the epicardium on the
+  // part of y = 1 off those two faces (three Laplace problems need disjoint sets).
+  TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(2, 1, 1), {6, 3, 3});
+  std::vector<int> epi;
+  for (int v : m.node_sets.at("ymax"))
+    if (m.nodes[v][0] > 1e-9 && m.nodes[v][0] < 2 - 1e-9) epi.push_back(v);
+  m.node_sets["epi"] = epi;
+  RuleFrameOptions o;
+  o.endo = "xmin";
+  o.rv_endo = "xmax";
+  o.epi = "epi";
+  o.apex = "zmin";
+  o.base = "zmax";
+  const RuleFrame rule(m, o);
+  ASSERT_TRUE(rule.biventricular());
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const Mat3 Q = rule.at(e, kCentroid, Vec3());
+    EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12) << e;
+    EXPECT_NEAR(Q.determinant(), 1.0, 1e-12) << e;
+  }
+  // On the LV endo face (φ_lv = 1, φ_rv = φ_epi = 0 at its vertices) Bayer's rule gives
+  // Q_lv: the fibre at α_endo from the circumferential direction l × t, t = −∇φ_lv
+  // (towards −x at x = 0, up to the tilt of ∇φ_lv), in the plane orthogonal to t; the
+  // sheet along t. On the RV endo face the helix is mirrored (α_s = −α_endo).
+  for (const double x0 : {0.0, 2.0})
+    for (const auto& [e, l] : face_points(m, x0)) {
+      const Mat3 Q = rule.at(e, l, Vec3());
+      const Vec3 t = Q.col(1);
+      EXPECT_GT(std::abs(t[0]), 0.9) << "sheet roughly transmural, x = " << x0;
+      Vec3 lz = Vec3::UnitZ() - Vec3::UnitZ().dot(t) * t;
+      lz.normalize();
+      const Vec3 c = lz.cross(t);
+      EXPECT_NEAR(std::atan2(Q.col(0).dot(lz), Q.col(0).dot(c)) / kDeg, x0 == 0.0 ? 60.0 : -60.0, 1e-6) << "x = " << x0;
+    }
+}
+
+// -------------------------------------------------------------------------------------
+// File-given frames.
+
+/// Unit, orthogonal (f, s) pairs written with 17 digits, so reading gives the same doubles.
+struct Written {
+  std::vector<Vec3> f, s;
+  std::string csv_rows(const std::vector<long long>& tags) const {
+    std::string out;
+    for (std::size_t i = 0; i < tags.size(); ++i)
+      out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", tags[i], f[i][0], f[i][1], f[i][2],
+                         s[i][0], s[i][1], s[i][2]);
+    return out;
+  }
+};
+
+Written random_frames(std::size_t n, unsigned seed, bool smooth = false) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g;
+  Written w;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 f(g(rng), g(rng), g(rng)), s(g(rng), g(rng), g(rng));
+    if (smooth) {  // near x and y, so nodal interpolation does not cancel
+      f = Vec3(1, 0.1 * f[1], 0.1 * f[2]);
+      s = Vec3(0.1 * s[0], 1, 0.1 * s[2]);
+    }
+    Mat3 Q = Mat3::Identity();
+    EXPECT_TRUE(orthonormal_frame(f, s, Q));
+    w.f.push_back(Q.col(0));
+    w.s.push_back(Q.col(1));
+  }
+  return w;
+}
+
+std::string view(const std::string& section, const std::string& name, const std::vector<long long>& tags,
+                 const std::vector<Vec3>& v) {
+  std::string out = fmt::format("${}\n1\n\"{}\"\n1\n0.0\n3\n0\n3\n{}\n", section, name, tags.size());
+  for (std::size_t i = 0; i < tags.size(); ++i) out += fmt::format("{} {:.17g} {:.17g} {:.17g}\n", tags[i], v[i][0], v[i][1], v[i][2]);
+  return out + fmt::format("$End{}\n", section);
+}
+
+std::string two_tets_msh() { return slurp(std::string(FE2_SOURCE_DIR) + "/tests/data/two_tets.msh"); }
+
+TEST(FileFrame, GmshElementViewsRoundTripBitForBit) {
+  ScratchDir dir;
+  const std::string mesh_file = dir / "two_tets.msh";
+  const Written w = random_frames(2, 1);
+  // Tags 6, 7 are the tets; the view also covers triangle 5, which is not ours to read.
+  Written w3 = w;
+  w3.f.push_back(Vec3::UnitX());
+  w3.s.push_back(Vec3::UnitY());
+  write_text(mesh_file, two_tets_msh() + view("ElementData", "fibre", {6, 7, 5}, w3.f) +
+                            view("ElementData", "sheet", {7, 5, 6}, {w3.s[1], w3.s[2], w3.s[0]}));
+  const TetMesh m = read_gmsh_tets(mesh_file);
+  FileFrameOptions o;
+  o.file = mesh_file;
+  o.mesh_file = mesh_file;
+  const FileFrame ff(m, o);
+  const GmshTags tags = read_gmsh_tags(mesh_file);
+  ASSERT_EQ(tags.elements, (std::vector<long long>{6, 7}));
+  for (int e = 0; e < 2; ++e) {
+    EXPECT_EQ(ff.fibres()[e], w.f[e]) << e;  // bit for bit
+    EXPECT_EQ(ff.sheets()[e], w.s[e]) << e;
+    const Mat3 Q = ff.at(e, kCentroid, Vec3());
+    EXPECT_NEAR((Q.col(0) - w.f[e]).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((Q.col(1) - w.s[e]).norm(), 0.0, 1e-15);
+  }
+  // The same views in a file of their own (no mesh in it), tags mapped via the mesh file.
+  const std::string data_file = dir / "fibres.msh";
+  write_text(data_file, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n" + view("ElementData", "f", {7, 6}, {w.f[1], w.f[0]}) +
+                            view("ElementData", "s", {6, 7}, w.s));
+  o.file = data_file;
+  o.fibre_view = "f";
+  o.sheet_view = "s";
+  const FileFrame separate(m, o);
+  EXPECT_EQ(separate.fibres(), w.f);
+  EXPECT_EQ(separate.sheets(), w.s);
+}
+
+TEST(FileFrame, GmshNodeViewsInterpolateAndReorthonormalize) {
+  ScratchDir dir;
+  const std::string mesh_file = dir / "two_tets.msh";
+  const Written w = random_frames(5, 2, /*smooth=*/true);
+  const std::vector<long long> node_tags = {11, 12, 13, 14, 15};
+  write_text(mesh_file, two_tets_msh() + view("NodeData", "fibre", node_tags, w.f) + view("NodeData", "sheet", node_tags, w.s));
+  const TetMesh m = read_gmsh_tets(mesh_file);
+  FileFrameOptions o;
+  o.file = mesh_file;
+  o.mesh_file = mesh_file;
+  o.per_node = true;
+  const FileFrame ff(m, o);
+  const GmshTags tags = read_gmsh_tags(mesh_file);
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    const auto k = std::find(node_tags.begin(), node_tags.end(), tags.nodes[i]) - node_tags.begin();
+    EXPECT_EQ(ff.fibres()[i], w.f[k]);
+    EXPECT_EQ(ff.sheets()[i], w.s[k]);
+  }
+  for (int e = 0; e < m.num_tets(); ++e) {
+    for (int a = 0; a < 4; ++a) {  // at a vertex: that node's frame
+      Bary l{};
+      l[a] = 1;
+      const Mat3 Q = ff.at(e, l, Vec3());
+      EXPECT_NEAR((Q.col(0) - ff.fibres()[m.tets[e][a]]).norm(), 0.0, 1e-15);
+      EXPECT_NEAR((Q.col(1) - ff.sheets()[m.tets[e][a]]).norm(), 0.0, 1e-15);
+    }
+    // Inside: f = normalize(Σ λ f_a), s = Gram–Schmidt of Σ λ s_a against f.
+    const Bary l{0.1, 0.2, 0.3, 0.4};
+    Vec3 f = Vec3::Zero(), s = Vec3::Zero();
+    for (int a = 0; a < 4; ++a) {
+      f += l[a] * ff.fibres()[m.tets[e][a]];
+      s += l[a] * ff.sheets()[m.tets[e][a]];
+    }
+    f.normalize();
+    s = (s - s.dot(f) * f).normalized();
+    const Mat3 Q = ff.at(e, l, Vec3());
+    EXPECT_NEAR((Q.col(0) - f).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((Q.col(1) - s).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((Q.col(2) - f.cross(s)).norm(), 0.0, 1e-14);
+  }
+}
+
+TEST(FileFrame, CsvByElementTagRoundTripsBitForBit) {
+  ScratchDir dir;
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});  // 12 tets, tags 1..12
+  const Written w = random_frames(12, 3);
+  std::vector<long long> tags;
+  for (long long t = 12; t >= 1; --t) tags.push_back(t);  // any order
+  Written rev;
+  for (int i = 11; i >= 0; --i) {
+    rev.f.push_back(w.f[i]);
+    rev.s.push_back(w.s[i]);
+  }
+  const std::string csv = dir / "fibres.csv";
+  write_text(csv, "tag,fx,fy,fz,sx,sy,sz\n# a comment\n\n" + rev.csv_rows(tags));
+  FileFrameOptions o;
+  o.file = csv;
+  o.csv = true;
+  const FileFrame ff(m, o);
+  EXPECT_EQ(ff.fibres(), w.f);
+  EXPECT_EQ(ff.sheets(), w.s);
+}
+
+/// The InputError of reading `csv_text` as the fibres of a 2x1x1 box (12 tets).
+std::string csv_error(const ScratchDir& dir, const std::string& csv_text) {
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});
+  const std::string csv = dir / "bad.csv";
+  write_text(csv, csv_text);
+  FileFrameOptions o;
+  o.file = csv;
+  o.csv = true;
+  return input_error([&] { FileFrame ff(m, o); });
+}
+
+std::string good_rows(int skip = 0) {
+  std::string rows;
+  for (int t = 1; t <= 12; ++t)
+    if (t != skip) rows += fmt::format("{},1,0,0,0,1,0\n", t);
+  return rows;
+}
+
+TEST(FileFrame, BadCsvFilesNameFileTagAndValue) {
+  ScratchDir dir;
+  const std::string file = dir / "bad.csv";
+  std::string msg = csv_error(dir, good_rows(5) + "5,1.01,0,0,0,1,0\n");
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}' line 12: element 5: fibre vector (1.01, 0, 0) has length 1.01, "
+                                 "expected a unit vector (length within 0.001 of 1)",
+                                 file)),
+            std::string::npos)
+      << msg;
+  msg = csv_error(dir, good_rows(3) + "3,1,0,0,0.01,1,0\n");
+  EXPECT_NE(msg.find("element 3: fibre and sheet are not orthogonal (f·s = 0.01), expected |f·s| <= 0.001"),
+            std::string::npos)
+      << msg;
+  msg = csv_error(dir, good_rows(7));
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}': no fibre and sheet for element 7 (and 0 more), expected one for "
+                                 "every element of the mesh (12 elements)",
+                                 file)),
+            std::string::npos)
+      << msg;
+  msg = csv_error(dir, good_rows() + "4,0,1,0,1,0,0\n");
+  EXPECT_NE(msg.find("line 13: element 4 appears again (first at line 4), expected exactly one fibre and sheet per "
+                     "element"),
+            std::string::npos)
+      << msg;
+  msg = csv_error(dir, good_rows() + "13,1,0,0,0,1,0\n");
+  EXPECT_NE(msg.find("element 13 is not a element of the mesh"), std::string::npos) << msg;
+  msg = csv_error(dir, "1,1,0,0,0,1\n");
+  EXPECT_NE(msg.find("line 1: got '1,1,0,0,0,1', expected 7 comma-separated numbers tag,fx,fy,fz,sx,sy,sz"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(FileFrame, BadGmshViewsNameFileViewAndTag) {
+  ScratchDir dir;
+  const std::string mesh_file = dir / "two_tets.msh";
+  const auto read = [&](const std::string& data, const std::string& fibre_view = "fibre") {
+    write_text(mesh_file, two_tets_msh() + data);
+    const TetMesh m = read_gmsh_tets(mesh_file);
+    FileFrameOptions o;
+    o.file = o.mesh_file = mesh_file;
+    o.fibre_view = fibre_view;
+    return input_error([&] { FileFrame ff(m, o); });
+  };
+  const std::vector<Vec3> x(2, Vec3::UnitX()), y(2, Vec3::UnitY());
+  const std::string good = view("ElementData", "fibre", {6, 7}, x) + view("ElementData", "sheet", {6, 7}, y);
+  EXPECT_EQ(read(good), "nothing thrown");
+  std::string msg = read(good, "fibres");
+  EXPECT_NE(msg.find(fmt::format("file '{}': no $ElementData view named \"fibres\" (its $ElementData views: "
+                                 "\"fibre\", \"sheet\"), expected one with 3 components per element",
+                                 mesh_file)),
+            std::string::npos)
+      << msg;
+  msg = read(view("ElementData", "fibre", {6, 7}, {Vec3(0, 0.98, 0), Vec3::UnitX()}) +
+             view("ElementData", "sheet", {6, 7}, {Vec3::UnitX(), Vec3::UnitY()}));
+  EXPECT_NE(msg.find("element 6: fibre vector (0, 0.98, 0) has length 0.98, expected a unit vector"),
+            std::string::npos)
+      << msg;
+  msg = read(view("ElementData", "fibre", {6, 7}, x) + view("ElementData", "sheet", {6, 7}, {Vec3::UnitY(), Vec3(0.6, 0.8, 0)}));
+  EXPECT_NE(msg.find("element 7: fibre and sheet are not orthogonal (f·s = 0.6)"), std::string::npos) << msg;
+  msg = read(view("ElementData", "fibre", {6}, {Vec3::UnitX()}) + view("ElementData", "sheet", {6}, {Vec3::UnitY()}));
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}': no fibre and sheet for element 7", mesh_file)), std::string::npos)
+      << msg;
+  msg = read(view("ElementData", "fibre", {6, 7}, x) + view("ElementData", "sheet", {6}, {Vec3::UnitY()}));
+  EXPECT_NE(msg.find("element 7 has a \"fibre\" vector but no \"sheet\" vector"), std::string::npos) << msg;
+}
+
+// -------------------------------------------------------------------------------------
+// The spec keys (checked against the schema on every read) and the VTU output.
+
+FrameFieldSpec read_frame_json(const json& frame, const TetMesh& m, const std::string& base_dir = ".") {
+  const json j = {{"frame", frame}};
+  SpecNode root(j, "", nullptr, &run_spec_schema());
+  SpecNode f = root.child("frame", false, "material frame (fibre, sheet, normal)");
+  FrameFieldSpec spec = read_frame_field_spec(f, m, base_dir, "");
+  f.finish();
+  return spec;
+}
+
+TEST(FrameSpecKeys, RuleAndFileKindsReadTheirKeysWithDefaults) {
+  const TetMesh m = slab();
+  const FrameFieldSpec rule = read_frame_json(
+      {{"kind", "rule"}, {"endo", "xmin"}, {"epi", "xmax"}, {"base", "zmax"}, {"apex", "zmin"}, {"beta_epi", -20}}, m);
+  ASSERT_EQ(rule.kind, FrameFieldSpec::Kind::rule);
+  EXPECT_EQ(rule.rule.alpha_endo, 60.0);
+  EXPECT_EQ(rule.rule.alpha_epi, -60.0);
+  EXPECT_EQ(rule.rule.beta_endo, 0.0);
+  EXPECT_EQ(rule.rule.beta_epi, -20.0);
+  EXPECT_EQ(rule.rule.rv_endo, "");
+  const auto field = make_frame_field(rule, m);
+  EXPECT_NEAR(helix_deg(field->at(0, kCentroid, Vec3())), helix_deg(RuleFrame(m, rule.rule).at(0, kCentroid, Vec3())),
+              0.0);
+
+  const std::string msg = input_error([&] {
+    read_frame_json({{"kind", "rule"}, {"endo", "xmn"}, {"epi", "xmax"}, {"base", "zmax"}, {"apex", "zmin"}}, m);
+  });
+  EXPECT_NE(msg.find("/frame/endo: got \"xmn\", expected a named surface or node set of the mesh (xmax, xmin, ymax, "
+                     "ymin, zmax, zmin); did you mean \"xmin\"?"),
+            std::string::npos)
+      << msg;
+
+  ScratchDir dir;
+  const TetMesh box = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});
+  write_text(dir / "f.csv", good_rows());
+  const FrameFieldSpec file =
+      read_frame_json({{"kind", "file"}, {"file", "f.csv"}, {"format", "csv"}}, box, dir / "");
+  ASSERT_EQ(file.kind, FrameFieldSpec::Kind::file);
+  EXPECT_FALSE(file.file.per_node);
+  EXPECT_EQ(file.file.fibre_view, "fibre");
+  ASSERT_TRUE(file.loaded);
+  EXPECT_EQ(make_frame_field(file, box)->at(3, kCentroid, Vec3()), Mat3::Identity());
+  // Constant and rotating frames: the rule FrameSpec::at applied (moved to AnalyticFrame).
+  const FrameFieldSpec rot = read_frame_json(
+      {{"kind", "rotating"}, {"axis", {1, 0, 0}}, {"coordinate", {0, 1, 0}}, {"from", {0, -60}}, {"to", {1, 60}}}, m);
+  const Mat3 Q = make_frame_field(rot, m)->at(0, kCentroid, Vec3(0, 0.75, 0));
+  EXPECT_NEAR((Q.col(0) - Vec3::UnitX()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((Q.col(1) - Vec3(0, std::cos(30 * kDeg), std::sin(30 * kDeg))).norm(), 0.0, 1e-15);
+  const std::string unknown = input_error([&] {
+    read_frame_json({{"kind", "rule"}, {"endo", "xmin"}, {"epi", "xmax"}, {"base", "zmax"}, {"apex", "zmin"},
+                     {"fibre", {1, 0, 0}}},
+                    m);
+  });
+  EXPECT_NE(unknown.find("unknown key 'fibre' in /frame"), std::string::npos) << unknown;
+}
+
+TEST(FrameOutput, VtuCellVectorsAreTheCentroidFrames) {
+  ScratchDir dir;
+  const TetMesh m = slab();
+  const RuleFrame rule(m, slab_rule());
+  const auto Q = frames_at_centroids(rule, m);
+  ASSERT_EQ(Q.size(), static_cast<std::size_t>(m.num_tets()));
+  EXPECT_NEAR(helix_deg(Q[0]), 60.0 - 120.0 * point(m, 0, kCentroid)[0], 1e-9);
+  VtuFields cells;
+  add_frame_cell_fields(cells, Q);
+  ASSERT_EQ(cells.fields().size(), 2u);
+  EXPECT_EQ(cells.fields()[0].name, "fibre");
+  EXPECT_EQ(cells.fields()[1].name, "sheet");
+  EXPECT_EQ(cells.fields()[1].values[3 * 5], Q[5](0, 1));
+  write_vtu(dir / "fibres.vtu", m, {}, cells);
+  const std::string text = slurp(dir / "fibres.vtu");
+  EXPECT_NE(text.find("Name=\"fibre\" NumberOfComponents=\"3\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"sheet\" NumberOfComponents=\"3\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fe2
