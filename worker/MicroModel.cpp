@@ -154,6 +154,18 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
   }
   stress_floor_ = floor;
 
+  // Point contexts and history: offsets only when some law keeps history.
+  bool any_history = false;
+  for (const auto& m : materials_) {
+    uses_context_.push_back(m->uses_context() ? 1 : 0);
+    any_history = any_history || m->history_size() > 0;
+  }
+  if (any_history) {
+    history_offset_.assign(static_cast<size_t>(ne) + 1, 0);
+    for (int e = 0; e < ne; ++e)
+      history_offset_[e + 1] = history_offset_[e] + 8 * static_cast<size_t>(material_of(e).history_size());
+  }
+
   geometry_.reserve(ne);
   eq_.resize(ne);
   std::vector<double> rho(mesh_.num_nodes(), 0.0);  // ⟨|∇N_a|⟩ on masters

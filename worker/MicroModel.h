@@ -96,6 +96,14 @@ class MicroModel {
   FactorKind initial_factor_kind() const;
   /// Content hash of mesh, materials layout and options (checks deserialized state).
   uint64_t fingerprint() const { return fingerprint_; }
+  /// Whether element e's law reads its point context (Material::uses_context).
+  bool uses_context(int e) const { return uses_context_[mesh_.region[e]] != 0; }
+  /// Doubles of point history in one unit: Σ_e 8 · (history_size of e's law); 0 when no
+  /// law keeps history (then units allocate none).
+  size_t history_size() const { return history_offset_.empty() ? 0 : history_offset_.back(); }
+  /// Where element e's history (8 Gauss points, point q at q · history_size of its law)
+  /// starts in a unit's history array.
+  size_t history_offset(int e) const { return history_offset_.empty() ? 0 : history_offset_[e]; }
 
  private:
   HexMesh mesh_;
@@ -110,6 +118,8 @@ class MicroModel {
   double node_scale_ = 1.0;
   double stress_floor_ = 0.0;
   uint64_t fingerprint_ = 0;
+  std::vector<uint8_t> uses_context_;   ///< per region
+  std::vector<size_t> history_offset_;  ///< num_elements + 1 prefix sums; empty without history
 };
 
 using MicroModelPtr = std::shared_ptr<const MicroModel>;

@@ -9,7 +9,7 @@
 namespace fe2 {
 
 namespace {
-constexpr uint32_t kStateVersion = 2;
+constexpr uint32_t kStateVersion = 3;  // 3: point history
 
 bool all_finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
 }  // namespace
@@ -24,6 +24,8 @@ MicroUnit::MicroUnit(MicroModelPtr model)
   w_ = Vec::Zero(n);
   dw1_ = Vec::Zero(n);
   w_committed_ = Vec::Zero(n);
+  history_.assign(model_->history_size(), 0.0);  // empty unless some law keeps history
+  history_committed_ = history_;
   chi_ = Eigen::MatrixXd::Zero(n, 9);
   sys_.K = model_->pattern();
   sys_.r = Vec::Zero(n);
@@ -31,7 +33,8 @@ MicroUnit::MicroUnit(MicroModelPtr model)
   sys_.H = Eigen::MatrixXd::Zero(9, n);
 }
 
-void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
+void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
+                            std::vector<double>* history) const {
   const MicroModel& m = *model_;
   const int n = m.num_dofs();
   const bool need_G = !m.symmetric();
@@ -47,6 +50,15 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
   HexContribution c;
   Eigen::Matrix<double, 3, 8> w_e;
   const double inv_volume = m.inv_volume();
+  std::vector<double> scratch;  // only for callers that keep no history of their own
+  if (!history && m.history_size() > 0) {
+    scratch.resize(m.history_size());
+    history = &scratch;
+  }
+  HexPointContext point;  // filled per element only where the law reads it
+  point.time = time_;
+  point.dt = dt_;
+  point.Zbar_dot = Zbar_dot_;
   for (int e = 0; e < m.num_elements(); ++e) {
     const auto& eq = m.element_equations(e);
     for (int i = 0; i < 3; ++i)
@@ -54,7 +66,24 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const {
         const int g = eq[hex_local(i, a)];
         w_e(i, a) = g >= 0 ? w[g] : 0.0;
       }
-    hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c);
+    const HexPointContext* context = nullptr;
+    if (m.uses_context(e)) {
+      // ẇ = (w − w_committed)/Δt: the backward-Euler (quasi-static) rate over the step,
+      // as the coordinator's Ż̄ = (Z̄ − Z̄_n)/Δt, so that Ż = (Z − Z_n)/Δt at every Gauss
+      // point. A job without a step (Δt = 0) has ẇ = 0.
+      for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 8; ++a) {
+          const int g = eq[hex_local(i, a)];
+          point.w_dot_e(i, a) = g >= 0 && dt_ > 0.0 ? (w[g] - w_committed_[g]) / dt_ : 0.0;
+        }
+      if (history) {
+        const size_t at = m.history_offset(e);
+        point.history_committed = history_committed_.data() + at;
+        point.history = history->data() + at;
+      }
+      context = &point;
+    }
+    hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c, context);
     const int* pos = m.scatter(e);
     for (int l = 0; l < 24; ++l) {
       const int gl = eq[l];
@@ -90,6 +119,7 @@ size_t MicroUnit::state_bytes() const {
   b += (len + n * d) + (len + 9 * d);                     // committed w, Z̄
   b += 3 * d + sizeof(int);                               // policy, refreshes
   b += 3 * d + sizeof(int) + 1;                           // committed policy, refreshes
+  b += 2 * (len + history_.size() * d);                   // history, committed history
   if (refreshed_since_commit_)
     b += (len + committed_factor_.K_factored.size() * d) + (len + 9 * n * d) + 1;
   return b;
@@ -173,10 +203,13 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   }
   has_pending_ = false;
   Zbar_ = in.Zbar;
+  time_ = in.time;
+  dt_ = in.dt;
+  Zbar_dot_ = in.Zbar_dot;
 
   {
     ScopedCpuTimer t(out.cpu_assembly);  // Fig. 5 (b)
-    assemble_at(w_, Zbar_, sys_);
+    assemble_at(w_, Zbar_, sys_, &history_);
   }
   if (!all_finite(sys_.r) || !sys_.Pbar.allFinite() || !sys_.Abar.allFinite())
     throw NumericalError(fmt::format("micro unit {}: non-finite residual or stress at step {} "
@@ -244,6 +277,7 @@ void MicroUnit::commit_step() {
   Zbar_committed_ = Zbar_;
   policy_committed_ = policy_;
   refresh_count_committed_ = refresh_count_;
+  history_committed_ = history_;
   refreshed_since_commit_ = false;
   committed_factor_ = FactorState{};
 }
@@ -254,6 +288,7 @@ void MicroUnit::rollback_step() {
   Zbar_ = Zbar_committed_;
   policy_ = policy_committed_;
   refresh_count_ = refresh_count_committed_;
+  history_ = history_committed_;
   if (refreshed_since_commit_) {
     // Back to the committed factor: rebuilt from its matrix on the next job that reuses
     // it (bit for bit, as after a migration), or replaced if that job refreshes.
@@ -291,6 +326,8 @@ void MicroUnit::serialize(Bytes& out) const {
     b.put_array(committed_factor_.chi.data(), 9 * n);
     b.put<uint8_t>(committed_factor_.kind == FactorKind::lu);
   }
+  b.put_array(history_.data(), history_.size());
+  b.put_array(history_committed_.data(), history_committed_.size());
 }
 
 void MicroUnit::deserialize(const Bytes& in) {
@@ -298,7 +335,9 @@ void MicroUnit::deserialize(const Bytes& in) {
   if (b.get_string() != kind()) throw Error("micro unit state: not a micro unit");
   const auto version = b.get<uint32_t>();
   if (version != kStateVersion)
-    throw Error(fmt::format("micro unit state: version {}, expected {}", version, kStateVersion));
+    throw Error(fmt::format("micro unit state: version {}, expected {} (a state written by "
+                            "another build of fe2heart)",
+                            version, kStateVersion));
   if (b.get<uint64_t>() != model_->fingerprint())
     throw Error("micro unit state: it belongs to a different unit model (fingerprint differs)");
   const size_t n = static_cast<size_t>(model_->num_dofs());
@@ -328,6 +367,8 @@ void MicroUnit::deserialize(const Bytes& in) {
     b.get_array_into(committed_factor_.chi.data(), 9 * n);
     committed_factor_.kind = b.get<uint8_t>() ? FactorKind::lu : FactorKind::cholesky;
   }
+  b.get_array_into(history_.data(), history_.size());
+  b.get_array_into(history_committed_.data(), history_committed_.size());
   if (!b.at_end()) throw Error("micro unit state: trailing bytes");
   // The factor is rebuilt from K_factored_ only if the next job reuses it: a unit
   // migrated at a refresh boundary costs no extra factorization.

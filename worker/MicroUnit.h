@@ -13,6 +13,10 @@
 //
 // The pending δw₁ is applied at the start of the next job when that job says so
 // (the coordinator accepted the iteration), with −χ(Z̄_new − Z̄_old) when Step 4 is on.
+//
+// Laws with a point context (Material::uses_context) get t, Δt of the job and
+// Ż = Ż̄ + B̃ẇ at each Gauss point; laws with history get their slice of the unit's
+// history arrays (MicroModel::history_offset), committed and rolled back with w.
 #include "worker/MicroModel.h"
 #include "worker/PointModel.h"
 #include "worker/RefreshPolicy.h"
@@ -43,8 +47,12 @@ class MicroUnit final : public PointModel {
   bool next_refresh(int step, int iteration) const override;
   size_t state_bytes() const override;
 
-  /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern).
-  void assemble_at(const Vec& w, const Vec9& Zbar, System& sys) const;
+  /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern),
+  /// with the point context of the last job. Laws with history write their current
+  /// values into `history` (MicroModel::history_size() doubles), or into a scratch
+  /// array when it is null.
+  void assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
+                   std::vector<double>* history = nullptr) const;
 
   const MicroModel& model() const { return *model_; }
   const Vec& w() const { return w_; }
@@ -56,6 +64,9 @@ class MicroUnit final : public PointModel {
   const RefreshPolicy& policy() const { return policy_; }
   FactorKind factor_kind() const { return factor_kind_; }
   const SparseFactor* factor() const { return factor_.get(); }
+  /// Point history of every Gauss point at the last assembled state, and at the last commit.
+  const std::vector<double>& history() const { return history_; }
+  const std::vector<double>& history_committed() const { return history_committed_; }
 
  private:
   bool refresh_due(const proto::JobInput& in) const;
@@ -88,6 +99,11 @@ class MicroUnit final : public PointModel {
   FactorState committed_factor_;    ///< valid while refreshed_since_commit_
   RefreshPolicy policy_committed_;
   int refresh_count_committed_ = 0;
+  std::vector<double> history_;            ///< point history at the last assembly
+  std::vector<double> history_committed_;  ///< point history at the last commit
+  // --- the last job's context (set by every job, so not state) ---
+  double time_ = 0.0, dt_ = 0.0;
+  Vec9 Zbar_dot_ = Vec9::Zero();
   // --- workspace ---
   System sys_;
   std::unique_ptr<SparseFactor> factor_;

@@ -4,7 +4,8 @@ namespace fe2 {
 
 void hex_contribution(const HexGeometry& geo, double inv_volume,
                       const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
-                      const Material& material, bool need_G, HexContribution& out) {
+                      const Material& material, bool need_G, HexContribution& out,
+                      const HexPointContext* point) {
   out.K.setZero();
   out.r.setZero();
   out.H.setZero();
@@ -23,7 +24,18 @@ void hex_contribution(const HexGeometry& geo, double inv_volume,
 
     // Z = Z̄ + B̃w: Z_iJ = Z̄_iJ + Σ_a w_ai ∂N_a/∂X_J
     Mat3 Z = as_mat3(Zbar) + w_e * g.transpose();
-    material.stress_and_tangent(as_vec9(Z), Pi, A);
+    if (point) {
+      MaterialPointContext context{point->time, point->dt, Vec9::Zero()};
+      // Ż = Ż̄ + B̃ẇ: Ż_iJ = Ż̄_iJ + Σ_a ẇ_ai ∂N_a/∂X_J
+      Eigen::Map<Mat3>(context.Zdot.data()) = as_mat3(point->Zbar_dot) + point->w_dot_e * g.transpose();
+      const size_t h = static_cast<size_t>(material.history_size());
+      PointHistory history;
+      if (h > 0)
+        history = {{point->history_committed + q * h, h}, {point->history + q * h, h}};
+      material.stress_and_tangent_at(as_vec9(Z), context, history, Pi, A);
+    } else {
+      material.stress_and_tangent(as_vec9(Z), Pi, A);
+    }
 
     for (int i = 0; i < 3; ++i)
       for (int J = 0; J < 3; ++J)

@@ -23,13 +23,28 @@ struct HexContribution {
   Vec9 Pbar;                        ///< ⟨Π⟩
 };
 
+/// What an element's Gauss points see besides Z, for a law that reads its context
+/// (Material::uses_context): at Gauss point q,
+///
+///   Ż = Ż̄ + B̃ ẇ,    history = [q·h, (q+1)·h) of the element's arrays, h = history_size()
+struct HexPointContext {
+  double time = 0.0;
+  double dt = 0.0;
+  Vec9 Zbar_dot = Vec9::Zero();          ///< Ż̄
+  Eigen::Matrix<double, 3, 8> w_dot_e;   ///< ẇ of the element's nodes, as w_e
+  const double* history_committed = nullptr;  ///< 8·h values (null when h = 0)
+  double* history = nullptr;                  ///< 8·h values, written
+};
+
 /// Local element unknown index of component i at node a.
 constexpr int hex_local(int i, int a) { return 8 * i + a; }
 
 /// Computes one element's contribution. `w_e(i,a)` = w of node a, component i.
-/// `inv_volume` = 1/|Y|. Throws NumericalError if a Gauss point is inverted.
+/// `inv_volume` = 1/|Y|. `point` is null for a law that reads no context (the
+/// stateless path, unchanged). Throws NumericalError if a Gauss point is inverted.
 void hex_contribution(const HexGeometry& geo, double inv_volume,
                       const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
-                      const Material& material, bool need_G, HexContribution& out);
+                      const Material& material, bool need_G, HexContribution& out,
+                      const HexPointContext* point = nullptr);
 
 }  // namespace fe2

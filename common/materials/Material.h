@@ -6,6 +6,7 @@
 //
 // Implementations throw fe2::NumericalError when det F <= 0 (an inverted point), so a
 // Newton driver can cut its step back; they never return NaN silently.
+#include "common/materials/MaterialPointContext.h"
 #include "common/tensor9.h"
 
 #include <memory>
@@ -47,6 +48,24 @@ class Material {
 
   /// Whether 𝔸 has major symmetry (true for every hyperelastic law).
   virtual bool major_symmetric() const { return true; }
+
+  // --- Material points with a context (MaterialPointContext.h) ---
+
+  /// Doubles of history (internal variables) the law keeps per material point; 0 for a
+  /// law that is a pure function of Z.
+  virtual int history_size() const { return 0; }
+
+  /// Whether the law reads its context (t, Δt, Ż, history). Point models compute no
+  /// context for laws that do not, so stateless laws cost nothing extra.
+  virtual bool uses_context() const { return history_size() > 0; }
+
+  /// Π and 𝔸 at a point with its context: reads history.committed, writes
+  /// history.current (history_size() doubles each). 𝔸 = dΠ/dZ of the step's update.
+  /// Default: the stateless pair.
+  virtual void stress_and_tangent_at(const Vec9& Z, const MaterialPointContext& context,
+                                     PointHistory history, Vec9& Pi, Mat9& A) const {
+    stress_and_tangent(Z, Pi, A);
+  }
 
   /// Serialization of parameters is by spec (materials are rebuilt from JSON).
 };
