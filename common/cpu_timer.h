@@ -30,4 +30,17 @@ class ScopedCpuTimer {
   double t0_;
 };
 
+/// Accumulates wall seconds into `sink` over its lifetime (a phase of a Newton iteration).
+class ScopedWallTimer {
+ public:
+  explicit ScopedWallTimer(double& sink) : sink_(sink), t0_(wall_seconds()) {}
+  ~ScopedWallTimer() { sink_ += wall_seconds() - t0_; }
+  ScopedWallTimer(const ScopedWallTimer&) = delete;
+  ScopedWallTimer& operator=(const ScopedWallTimer&) = delete;
+
+ private:
+  double& sink_;
+  double t0_;
+};
+
 }  // namespace fe2

@@ -19,6 +19,13 @@ std::vector<int> FarmLayout::owned_units(int c) const {
   return out;
 }
 
+std::vector<int> FarmLayout::owned_elements(int c) const {
+  std::vector<int> out;
+  for (size_t e = 0; e < coordinator_of_element.size(); ++e)
+    if (coordinator_of_element[e] == c) out.push_back(static_cast<int>(e));
+  return out;
+}
+
 std::vector<int> partition_elements(const TetMesh& mesh, int parts) {
   const int ne = mesh.num_tets();
   std::vector<int> part(ne, 0);
@@ -68,11 +75,16 @@ FarmLayout FarmLayout::make(const RunSpec& spec, int ranks, int override_count) 
                                  "coordinating, expected at least one worker rank (launch "
                                  "more ranks or let coordinators work)",
                                  ranks));
-  L.coordinator_of_unit = partition_elements(spec.mesh, L.coordinators);
-  const Placement p = static_placement(ne, static_cast<int>(L.worker_ranks.size()),
+  // Elements are partitioned; a point goes with its element (points are numbered
+  // element after element, points_per_element each: MacroPoints).
+  L.coordinator_of_element = partition_elements(spec.mesh, L.coordinators);
+  const int nu = spec.num_points();
+  L.coordinator_of_unit.resize(nu);
+  for (int u = 0; u < nu; ++u) L.coordinator_of_unit[u] = L.coordinator_of_element[u / spec.points_per_element];
+  const Placement p = static_placement(nu, static_cast<int>(L.worker_ranks.size()),
                                        spec.farm.policy);
-  L.initial_worker_of_unit.resize(ne);
-  for (int u = 0; u < ne; ++u) L.initial_worker_of_unit[u] = L.worker_ranks[p.worker_of_unit[u]];
+  L.initial_worker_of_unit.resize(nu);
+  for (int u = 0; u < nu; ++u) L.initial_worker_of_unit[u] = L.worker_ranks[p.worker_of_unit[u]];
   return L;
 }
 

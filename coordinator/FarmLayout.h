@@ -13,13 +13,16 @@ struct FarmLayout {
   int ranks = 1;
   int coordinators = 1;
   std::vector<int> worker_ranks;         ///< world ranks that hold units
-  std::vector<int> coordinator_of_unit;  ///< per unit (= tet): owning coordinator's world rank
+  std::vector<int> coordinator_of_element;  ///< per macro element: owning coordinator's world rank
+  std::vector<int> coordinator_of_unit;  ///< per unit (= integration point): its element's coordinator
   std::vector<int> initial_worker_of_unit;  ///< per unit: world rank holding it at the start
 
   bool is_coordinator(int rank) const { return rank < coordinators; }
   bool is_worker(int rank) const;
-  /// Tets owned by coordinator `c`, ascending.
+  /// Units (points) owned by coordinator `c`, ascending.
   std::vector<int> owned_units(int c) const;
+  /// Elements owned by coordinator `c`, ascending.
+  std::vector<int> owned_elements(int c) const;
 
   /// Throws InputError (before any work) if the coordinator count cannot work.
   /// `coordinators_override` > 0 replaces the spec's farm.coordinators.

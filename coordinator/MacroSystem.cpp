@@ -2,17 +2,24 @@
 
 namespace fe2 {
 
-MacroSystem::MacroSystem(const RunSpec& spec, const std::vector<int>& owned_tets, int part, int parts)
+MacroSystem::MacroSystem(const RunSpec& spec, bool pressure_field)
     : spec_(spec), num_nodes_(spec.mesh.num_nodes()) {
   const TetMesh& m = spec.mesh;
+  if (pressure_field) {
+    pressure_of_node_.assign(num_nodes_, -1);
+    vertex_of_pressure_ = m.vertices();
+    for (size_t j = 0; j < vertex_of_pressure_.size(); ++j)
+      pressure_of_node_[vertex_of_pressure_[j]] = static_cast<int>(j);
+  }
+  num_dofs_ = 3 * num_nodes_ + num_pressure();
   // Prescribed DOFs; a later condition on the same DOF overrides an earlier one.
-  std::vector<int> source(3 * num_nodes_, -1);
+  std::vector<int> source(num_dofs_, -1);
   for (size_t d = 0; d < spec.dirichlet.size(); ++d)
     for (int node : m.node_sets.at(spec.dirichlet[d].set))
       for (int i = 0; i < 3; ++i)
         if (spec.dirichlet[d].fixed[i]) source[3 * node + i] = static_cast<int>(d);
-  eq_.assign(3 * num_nodes_, -1);
-  for (int dof = 0; dof < 3 * num_nodes_; ++dof) {
+  eq_.assign(num_dofs_, -1);
+  for (int dof = 0; dof < num_dofs_; ++dof) {
     if (source[dof] >= 0) {
       prescribed_.push_back(dof);
       prescribed_source_.emplace_back(source[dof], dof % 3);
@@ -20,29 +27,6 @@ MacroSystem::MacroSystem(const RunSpec& spec, const std::vector<int>& owned_tets
       eq_[dof] = num_free_++;
     }
   }
-  // Pressure triangles are dealt out to the coordinators in turn (exclusively).
-  int k = 0;
-  for (size_t p = 0; p < spec.pressure.size(); ++p)
-    for (const auto& tri : m.faces.at(spec.pressure[p].surface))
-      if (k++ % parts == part) triangles_.push_back({tri, static_cast<int>(p)});
-
-  auto add_block = [&](const int* nodes, int nn, std::vector<int>& map) {
-    for (int a = 0; a < nn; ++a)
-      for (int i = 0; i < 3; ++i)
-        for (int b = 0; b < nn; ++b)
-          for (int k = 0; k < 3; ++k) {
-            const int r = eq_[3 * nodes[a] + i], c = eq_[3 * nodes[b] + k];
-            if (r < 0 || c < 0) {
-              map.push_back(-1);
-              continue;
-            }
-            map.push_back(static_cast<int>(rows_.size()));
-            rows_.push_back(r);
-            cols_.push_back(c);
-          }
-  };
-  for (int e : owned_tets) add_block(m.tets[e].data(), 4, tet_map_);
-  for (const auto& t : triangles_) add_block(t.nodes.data(), 3, tri_map_);
 }
 
 double MacroSystem::prescribed_value(size_t k, double t) const {
@@ -51,20 +35,32 @@ double MacroSystem::prescribed_value(size_t k, double t) const {
   return ds.value[i] * ramp_factor(ds.ramp, t, spec_.t_end);
 }
 
-void MacroSystem::add_tet(int k, const Eigen::Matrix<double, 12, 12>& Ke,
-                          std::vector<double>& values) const {
-  const int* map = &tet_map_[static_cast<size_t>(k) * 144];
-  for (int l = 0; l < 12; ++l)
-    for (int c = 0; c < 12; ++c)
-      if (map[12 * l + c] >= 0) values[map[12 * l + c]] += Ke(l, c);
+int MacroSystem::declare_block(std::vector<int> dofs) {
+  Block b;
+  b.first_slot = slot_.size();
+  for (int r : dofs)
+    for (int c : dofs) {
+      const int er = eq_[r], ec = eq_[c];
+      if (er < 0 || ec < 0) {
+        slot_.push_back(-1);
+        continue;
+      }
+      slot_.push_back(static_cast<int>(rows_.size()));
+      rows_.push_back(er);
+      cols_.push_back(ec);
+    }
+  b.dofs = std::move(dofs);
+  blocks_.push_back(std::move(b));
+  return static_cast<int>(blocks_.size()) - 1;
 }
 
-void MacroSystem::add_triangle(int k, const Eigen::Matrix<double, 9, 9>& Ke,
-                               std::vector<double>& values) const {
-  const int* map = &tri_map_[static_cast<size_t>(k) * 81];
-  for (int l = 0; l < 9; ++l)
-    for (int c = 0; c < 9; ++c)
-      if (map[9 * l + c] >= 0) values[map[9 * l + c]] += Ke(l, c);
+void MacroSystem::add(int block, const Eigen::MatrixXd& K, std::vector<double>& values) const {
+  const Block& b = blocks_[block];
+  const int n = static_cast<int>(b.dofs.size());
+  const int* slot = &slot_[b.first_slot];
+  for (int r = 0; r < n; ++r)
+    for (int c = 0; c < n; ++c)
+      if (slot[n * r + c] >= 0) values[slot[n * r + c]] += K(r, c);
 }
 
 }  // namespace fe2

@@ -1,9 +1,14 @@
 #pragma once
-// Macro unknowns and the fixed triplet pattern of S̄ (Eq. 10): equation numbers of
-// free DOFs (Dirichlet DOFs are eliminated), one 12x12 block per owned tet and one 9x9
-// block per owned pressure triangle, in a fixed order so each iteration only refills
-// values. With several coordinators each holds the triplets of its own elements
-// (MUMPS distributed assembled input sums them).
+// The macro unknowns and the fixed triplet pattern of S̄ (Eq. 10) over several fields:
+//   [ ū : 3 per mesh node (node-major 3a + i) | p : 1 per vertex, when the formulation
+//     has a pressure field | later: cavity pressures, fluid ]
+// each field a contiguous range at its offset (MFEM's BlockOperator offsets). Dirichlet
+// DOFs of ū are eliminated: free DOFs get equation numbers, in DOF order.
+//
+// Macro terms (MacroTerm.h) declare the local blocks they fill, a DOF list each; the
+// pattern is their union, in a fixed order, so each iteration only refills values.
+// With several coordinators each declares the blocks of its own elements (MUMPS
+// distributed assembled input sums duplicates).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/RunSpec.h"
 
@@ -13,41 +18,55 @@ namespace fe2 {
 
 class MacroSystem {
  public:
-  /// `owned_tets`: this coordinator's tets; pressure triangles k with k % parts == part.
-  MacroSystem(const RunSpec& spec, const std::vector<int>& owned_tets, int part = 0, int parts = 1);
+  /// `pressure_field`: a P1 pressure on the vertices follows the displacement block.
+  MacroSystem(const RunSpec& spec, bool pressure_field);
 
-  int num_dofs() const { return 3 * num_nodes_; }
+  // --- fields
+  int num_dofs() const { return num_dofs_; }
+  int displacement_dofs() const { return 3 * num_nodes_; }
+  bool has_pressure() const { return !pressure_of_node_.empty(); }
+  int pressure_offset() const { return 3 * num_nodes_; }
+  int num_pressure() const { return static_cast<int>(vertex_of_pressure_.size()); }
+  /// DOF of the pressure at mesh node `node` (a vertex).
+  int pressure_dof(int node) const { return pressure_offset() + pressure_of_node_[node]; }
+  /// Mesh node of pressure unknown j.
+  int vertex_of_pressure(int j) const { return vertex_of_pressure_[j]; }
+
+  // --- equations
   int num_free() const { return num_free_; }
-  /// Equation of DOF 3a + i, or -1 if prescribed.
+  /// Equation of a DOF, or −1 if prescribed.
   int eq(int dof) const { return eq_[dof]; }
   /// Prescribed DOFs and their value at time t.
   const std::vector<int>& prescribed() const { return prescribed_; }
   double prescribed_value(size_t k, double t) const;
 
-  /// The pattern (0-based rows/cols of free equations).
+  // --- pattern
+  /// Declares a local block over `dofs`; returns its id. Before the first rows() call.
+  int declare_block(std::vector<int> dofs);
+  const std::vector<int>& block_dofs(int block) const { return blocks_[block].dofs; }
+  /// The pattern (0-based rows/cols of free equations), all blocks in declaration order.
   const std::vector<int>& rows() const { return rows_; }
   const std::vector<int>& cols() const { return cols_; }
-  /// Adds the k-th owned tet's 12x12 block (node-major) into `values` at its slots.
-  void add_tet(int k, const Eigen::Matrix<double, 12, 12>& Ke, std::vector<double>& values) const;
-  /// Adds pressure triangle `k` (in the order of pressure_triangles()) block.
-  void add_triangle(int k, const Eigen::Matrix<double, 9, 9>& Ke, std::vector<double>& values) const;
-  struct PressureTriangle {
-    std::array<int, 3> nodes;
-    int load;  ///< index into spec.pressure
-  };
-  const std::vector<PressureTriangle>& pressure_triangles() const { return triangles_; }
+  /// Adds K (block DOFs x block DOFs) into `values` at the block's slots.
+  void add(int block, const Eigen::MatrixXd& K, std::vector<double>& values) const;
 
  private:
+  struct Block {
+    std::vector<int> dofs;
+    size_t first_slot = 0;  ///< into slot_
+  };
   const RunSpec& spec_;
   int num_nodes_;
+  int num_dofs_;
   int num_free_ = 0;
   std::vector<int> eq_;
   std::vector<int> prescribed_;
   std::vector<std::pair<int, int>> prescribed_source_;  ///< (dirichlet index, component)
-  std::vector<PressureTriangle> triangles_;
+  std::vector<int> pressure_of_node_;   ///< node -> pressure unknown (−1: not a vertex)
+  std::vector<int> vertex_of_pressure_;
+  std::vector<Block> blocks_;
+  std::vector<int> slot_;               ///< per block entry (row-major): slot or −1
   std::vector<int> rows_, cols_;
-  std::vector<int> tet_map_;        ///< per tet 144 entries: slot or -1
-  std::vector<int> tri_map_;        ///< per triangle 81 entries: slot or -1
 };
 
 }  // namespace fe2

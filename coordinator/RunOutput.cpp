@@ -84,24 +84,35 @@ std::string RunOutput::pvd_path() const { return dir_ + "/displacement.pvd"; }
 void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step,
                              double time) {
   const TetMesh& mesh = sim.spec().mesh;
-  const auto& u = sim.displacement();
+  const Eigen::VectorXd u = sim.displacement();
   std::vector<Vec3> disp(mesh.num_nodes());
   for (int a = 0; a < mesh.num_nodes(); ++a) disp[a] = u.segment<3>(3 * a);
   VtuFields point, cell;
   point.add_vector("displacement", disp);
+  if (sim.system().has_pressure()) point.add_scalar("pressure", sim.nodal_pressure());
   if (!pvd_) return;
-  std::vector<double> detF(mesh.num_tets()), region(mesh.num_tets()), model(mesh.num_tets());
-  std::vector<Vec3> fibre(mesh.num_tets());
-  for (int e = 0; e < mesh.num_tets(); ++e) {
-    Eigen::Matrix<double, 12, 1> ue;
-    for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u.segment<3>(3 * mesh.tets[e][a]);
-    const Vec9 Z = sim.points()[e].B * ue;
-    detF[e] = (Mat3::Identity() + as_mat3(Z)).determinant();
+  // Cell values are volume-weighted means over the element's integration points.
+  const MacroPoints& points = sim.points();
+  const int ne = mesh.num_tets();
+  std::vector<double> detF(ne, 0.0), region(ne), model(ne);
+  std::vector<Vec3> fibre(ne, Vec3::Zero());
+  std::vector<Vec9> P_cell(ne, Vec9::Zero());
+  for (int e = 0; e < ne; ++e) {
+    double volume = 0.0;
+    for (int k = points.first_point(e); k < points.first_point(e + 1); ++k) {
+      const double w = points[k].volume;
+      volume += w;
+      detF[e] += w * (Mat3::Identity() + as_mat3(sim.displacement_gradient(k))).determinant();
+      P_cell[e] += w * P[k];
+      fibre[e] += w * sim.frame(k).col(0);
+    }
+    detF[e] /= volume;
+    P_cell[e] /= volume;
+    fibre[e].normalize();
     region[e] = mesh.region[e];
     model[e] = sim.spec().model_index_of_tet(e);
-    fibre[e] = sim.frame(e).col(0);
   }
-  cell.add_tensor("P_bar", P);
+  cell.add_tensor("P_bar", P_cell);
   cell.add_scalar("det_F", detF);
   cell.add_scalar("region", region);
   cell.add_scalar("model", model);
@@ -148,6 +159,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                     {"iterations", h.iterations},
                     {"cutbacks", h.cutbacks},
                     {"residuals", h.residuals},
+                    {"volume_residuals", h.volume_residuals},
                     {"micro_residuals", h.micro_residuals},
                     {"gmres_iterations", h.gmres_iterations},
                     {"refreshes", h.refreshes},
@@ -161,7 +173,10 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["refreshes"] = refreshes;
   s["micro_cpu_seconds"] = micro_cpu;
   s["wall_seconds"] = wall;
-  s["points"] = sim.spec().mesh.num_tets();
+  s["points"] = sim.points().size();
+  s["elements"] = sim.spec().mesh.num_tets();
+  s["element_order"] = sim.spec().mesh.order();
+  s["formulation"] = sim.spec().formulation.mixed ? "mixed" : "displacement";
   if (pvd_) s["fields"] = fs::path(pvd_path()).filename().string();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }

@@ -4,7 +4,10 @@
 #include "common/materials/material_factory.h"
 #include "common/mesh/box_mesh.h"
 #include "common/mesh/gmsh_reader.h"
+#include "common/mesh/lv_mesh.h"
 #include "common/mesh/point_locator.h"
+#include "common/fem/quadrature.h"
+#include "coordinator/MacroPoints.h"
 #include "common/spec/spec_schemas.h"
 
 #include <cmath>
@@ -39,8 +42,9 @@ int RunSpec::model_index_of_tet(int e) const {
 }
 
 std::vector<int> RunSpec::model_of_points() const {
-  std::vector<int> m(mesh.num_tets());
-  for (int e = 0; e < mesh.num_tets(); ++e) m[e] = model_index_of_tet(e);
+  std::vector<int> m;
+  m.reserve(num_points());
+  for (int e = 0; e < mesh.num_tets(); ++e) m.insert(m.end(), points_per_element, model_index_of_tet(e));
   return m;
 }
 
@@ -63,8 +67,11 @@ Ramp read_ramp(SpecNode& s) {
 int axis_index(const std::string& a) { return a[0] - 'x'; }
 
 void read_mesh(SpecNode m, RunSpec& spec) {
-  const std::string kind = m.choice("kind", "box", {"box", "gmsh"},
-                                    "structured box of tetrahedra, or a Gmsh 4.1 file");
+  const std::string kind = m.choice("kind", "box", {"box", "gmsh", "lv"},
+                                    "structured box of tetrahedra, a Gmsh 4.1 file, or an idealized left ventricle");
+  const auto order = [&] {
+    return m.integer("order", 1, Range::closed(1, 2), "element order: 1 (4-node) or 2 (10-node tetrahedra)");
+  };
   if (kind == "box") {
     const Vec3 lo = vec3(m, "lo", Vec3::Zero(), "lower corner");
     const Vec3 hi = vec3(m, "hi", std::nullopt, "upper corner");
@@ -82,8 +89,33 @@ void read_mesh(SpecNode m, RunSpec& spec) {
     const int axis = axis_index(slabs.choice("axis", "x", {"x", "y", "z"}, "slab normal"));
     const int count = slabs.integer("count", 1, Range::closed(1, 1000), "number of slabs");
     slabs.finish();
-    spec.mesh = make_box_mesh(lo, hi, d, count > 1 ? axis : -1, count);
+    spec.mesh = make_box_mesh(lo, hi, d, count > 1 ? axis : -1, count, order());
     spec.mesh_source = "box generator";
+  } else if (kind == "lv") {
+    // Truncated prolate ellipsoids; defaults: problem 2 of Land et al. 2015 (mm).
+    LvMeshParams p;
+    const auto endo = m.numbers("endo", 2, std::vector<double>{7, 17},
+                                "endocardial semi-axes [short, long] (long axis along z)");
+    const auto epi = m.numbers("epi", 2, std::vector<double>{10, 20}, "epicardial semi-axes [short, long]");
+    if (!(endo[0] > 0 && endo[1] > 0)) m.fail("endo", "two semi-axes > 0");
+    if (!(epi[0] > endo[0] && epi[1] > endo[1])) m.fail("epi", "semi-axes larger than 'endo' (the epicardium encloses it)");
+    p.endo_short = endo[0];
+    p.endo_long = endo[1];
+    p.epi_short = epi[0];
+    p.epi_long = epi[1];
+    p.base_z = m.number("base_z", 5.0, Range::any(), "base plane z = base_z; the apex points to -z");
+    if (!(std::abs(p.base_z) < p.endo_long)) m.fail("base_z", "a plane cutting the endocardium, |base_z| < endo[1]");
+    const auto div = m.numbers("divisions", 3, std::vector<double>{16, 8, 2},
+                               "[circumferential, apex-to-base, transmural] divisions (6 tets per cell)");
+    for (int i = 0; i < 3; ++i)
+      if (!(div[i] >= (i == 0 ? 3 : 1) && div[i] <= 1000 && div[i] == std::floor(div[i])))
+        m.fail("divisions", "three integers in [1, 1000], the first (circumferential) >= 3");
+    p.circumferential = static_cast<int>(div[0]);
+    p.longitudinal = static_cast<int>(div[1]);
+    p.transmural = static_cast<int>(div[2]);
+    p.order = order();
+    spec.mesh = make_lv_mesh(p);
+    spec.mesh_source = "LV generator";
   } else {
     std::filesystem::path p = m.string("file", std::nullopt, "Gmsh 4.1 ASCII mesh file");
     if (p.is_relative()) p = std::filesystem::path(spec.base_dir) / p;
@@ -110,6 +142,37 @@ void read_frame(SpecNode f, RunSpec& spec) {
   fr.c1 = a.c1;
   fr.angle0 = a.angle0;
   fr.angle1 = a.angle1;
+  f.finish();
+}
+
+void read_formulation(SpecNode f, RunSpec& spec) {
+  FormulationSpec& fs = spec.formulation;
+  fs.mixed = f.choice("kind", "displacement", {"displacement", "mixed"},
+                      "displacement only, or a pressure field enforcing J̄ = 1 (mixed)") == "mixed";
+  if (f.has("quadrature_degree"))
+    fs.quadrature_degree = f.integer("quadrature_degree", std::nullopt, Range::closed(0, 8),
+                                     "tet rule degree; one point model per quadrature point "
+                                     "(default 2(order − 1): 1 point for linear, 4 for quadratic tets)");
+  const int degree = fs.quadrature_degree < 0 ? default_point_degree(spec.mesh.order()) : fs.quadrature_degree;
+  spec.points_per_element = static_cast<int>(tet_rule(degree).size());
+  if (fs.mixed) {
+    if (f.has("bulk_modulus"))
+      fs.bulk_modulus = f.number("bulk_modulus", std::nullopt, Range::positive(),
+                                 "κ (Pa) of the perturbed Lagrangian J̄ − 1 = −p/κ; absent: a "
+                                 "Lagrange multiplier, J̄ = 1 exactly");
+    if (f.has("stabilization_modulus"))
+      fs.stabilization_modulus =
+          f.number("stabilization_modulus", std::nullopt, Range::positive(),
+                   "μ_s (Pa) of the pressure-projection stabilization of equal-order P1/P1 "
+                   "(required on linear meshes; about the tissue's shear modulus)");
+    // Equal-order P1/P1 violates the inf–sup condition: without stabilization the
+    // pressure oscillates (checkerboard) and the Lagrange form is singular.
+    if (spec.mesh.order() == 1 && fs.stabilization_modulus == 0.0)
+      f.fail("stabilization_modulus",
+             fmt::format("a modulus in Pa (about the tissue's shear modulus) for mixed P1/P1 on "
+                         "the linear mesh {} (or a quadratic mesh, for Taylor–Hood P2/P1)",
+                         spec.mesh_source));
+  }
   f.finish();
 }
 
@@ -200,6 +263,9 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   root.string("description", "", "what the scene shows and how to view it");
   read_mesh(root.child("mesh", true, "macro mesh"), spec);
   read_frame(root.child("frame", false, "material frame (fibre, sheet, normal)"), spec);
+  read_formulation(root.child("formulation", false, "macro discretization: displacement only, or "
+                                                    "mixed displacement–pressure"),
+                   spec);
   read_models(root.child("models", true, "point models by name"),
               root.child("assign", false, "which model each element uses"), spec, build_units);
 

@@ -14,6 +14,7 @@
 #include "worker/MicroModel.h"
 #include "worker/point_models.h"
 
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -53,6 +54,17 @@ struct FrameSpec {
   Mat3 at(const Vec3& X) const;
 };
 
+/// The macro discretization. Displacement order = the mesh's (P1 or P2); `mixed` adds a
+/// P1 pressure p (positive in compression) on the vertices: Taylor–Hood P2/P1 on
+/// quadratic meshes, stabilized equal-order P1/P1 on linear ones.
+struct FormulationSpec {
+  bool mixed = false;
+  /// Perturbed Lagrangian J̄ − 1 = −p/κ; +∞: Lagrange multiplier (J̄ = 1).
+  double bulk_modulus = std::numeric_limits<double>::infinity();
+  double stabilization_modulus = 0.0;  ///< μ_s of P1/P1 (0: none)
+  int quadrature_degree = -1;          ///< −1: 2(order − 1)
+};
+
 struct RunSpec {
   std::string file;        ///< where it was read from ("" when built in code)
   std::string base_dir;    ///< relative files resolve here
@@ -65,6 +77,9 @@ struct RunSpec {
   std::vector<PointModelSpec> models;
   std::map<int, int> model_of_region;  ///< region tag -> model index
   int default_model = 0;
+
+  FormulationSpec formulation;
+  int points_per_element = 1;          ///< of the quadrature rule (point models per element)
 
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
@@ -87,8 +102,10 @@ struct RunSpec {
   bool write_vtu = true;
 
   int model_index_of_tet(int e) const;
-  /// Model index of every integration point (one per tet), in point order.
+  /// Model index of every integration point, in point order (element after element,
+  /// points_per_element each; MacroPoints).
   std::vector<int> model_of_points() const;
+  int num_points() const { return points_per_element * mesh.num_tets(); }
 };
 
 /// Reads and checks a spec; every problem is an InputError naming the key.

@@ -1,8 +1,8 @@
 #include "coordinator/Simulation.h"
 
 #include "common/cpu_timer.h"
+#include "common/fem/lagrange_tet.h"
 #include "common/mesh/point_locator.h"
-#include "coordinator/follower_pressure.h"
 
 #include <spdlog/spdlog.h>
 
@@ -13,71 +13,99 @@ namespace fe2 {
 
 namespace {
 
-using Mat12 = Eigen::Matrix<double, 12, 12>;
-using Vec12 = Eigen::Matrix<double, 12, 1>;
-
-/// Consistent mass of a linear tet: M_ab = ρ|e|/20 (1 + δ_ab) I₃.
-Mat12 tet_mass(double rho, double volume) {
-  Mat12 M = Mat12::Zero();
-  for (int a = 0; a < 4; ++a)
-    for (int b = 0; b < 4; ++b)
-      M.block<3, 3>(3 * a, 3 * b) = (rho * volume / 20.0 * (a == b ? 2.0 : 1.0)) * Mat3::Identity();
-  return M;
-}
-
-template <class Vec>
-Vec12 gather(const Vec& u, const std::array<int, 4>& t) {
-  Vec12 ue;
-  for (int a = 0; a < 4; ++a) ue.segment<3>(3 * a) = u.template segment<3>(3 * t[a]);
-  return ue;
-}
-
-}  // namespace
-
-namespace {
-std::vector<int> all_tets(const TetMesh& m) {
+std::vector<int> all_elements(const TetMesh& m) {
   std::vector<int> v(m.num_tets());
   for (int e = 0; e < m.num_tets(); ++e) v[e] = e;
   return v;
 }
+
+Eigen::VectorXd gather(const Eigen::VectorXd& x, const std::vector<int>& dofs) {
+  Eigen::VectorXd v(dofs.size());
+  for (size_t k = 0; k < dofs.size(); ++k) v[k] = x[dofs[k]];
+  return v;
+}
+
 }  // namespace
 
 Simulation::Simulation(const RunSpec& spec, PointEvaluator& points)
-    : Simulation(spec, points, proto::Group(), all_tets(spec.mesh)) {}
+    : Simulation(spec, points, proto::Group(), all_elements(spec.mesh)) {}
 
 Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
-                       const proto::Group& coordinators, std::vector<int> owned_tets)
+                       const proto::Group& coordinators, std::vector<int> owned_elements)
     : spec_(spec),
       evaluator_(points),
       self_(coordinators.valid() ? MPI_COMM_NULL : MPI_COMM_SELF),
       group_(coordinators.valid() ? coordinators : self_),
-      owned_(std::move(owned_tets)),
-      system_(spec, owned_, group_.rank(), group_.size()),
-      mumps_(group_.raw(), system_.num_free()),
-      pts_(tet_points(spec.mesh)) {
-  const int ne = spec.mesh.num_tets();
-  Q_.resize(ne);
-  R_.resize(ne);
-  for (int e = 0; e < ne; ++e) {
-    Q_[e] = spec.frame.at(pts_[e].centroid);
-    R_[e] = frame_rotation(Q_[e]);
-  }
-  const int n = system_.num_dofs();
-  u_ = v_ = a_ = u_n_ = v_n_ = a_n_ = Eigen::VectorXd::Zero(n);
-  Zbar_n_.assign(ne, Vec9::Zero());
-  P_bar_.assign(ne, Vec9::Zero());
-  jobs_.resize(owned_.size());
-  values_.assign(system_.rows().size(), 0.0);
+      owned_elements_(std::move(owned_elements)),
+      points_(spec.mesh, spec.formulation.quadrature_degree),
+      owned_points_(points_.points_of(owned_elements_)),
+      system_(spec, spec.formulation.mixed),
+      mumps_(group_.raw(), system_.num_free()) {
+  FE2_CHECK(points_.points_per_element() == spec.points_per_element,
+            "{} points per element, the spec counted {}", points_.points_per_element(),
+            spec.points_per_element);
   if (system_.num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
-  mumps_.set_pattern(system_.rows(), system_.cols());
+  const int np = points_.size();
+  Q_.resize(np);
+  R_.resize(np);
+  for (int k = 0; k < np; ++k) {
+    Q_[k] = spec.frame.at(points_[k].X);
+    R_[k] = frame_rotation(Q_[k]);
+  }
+  for (int k : owned_points_)
+    point_dofs_.push_back(displacement_dofs(spec.mesh.element_nodes(points_[k].element)));
+
+  // The scene's terms; an effect that is off builds nothing.
+  responses_.resize(owned_points_.size());
+  terms_.push_back(std::make_unique<PointStressTerm>(spec.mesh, points_, owned_elements_, responses_));
+  if (spec.dynamic)
+    terms_.push_back(std::make_unique<InertiaTerm>(spec.mesh, owned_elements_, spec.density));
+  if (!spec.pressure.empty())
+    terms_.push_back(std::make_unique<FollowerPressureTerm>(spec, group_.rank(), group_.size()));
+  if (spec.formulation.mixed) {
+    auto term = std::make_unique<IncompressibilityTerm>(spec.mesh, points_, owned_elements_, spec.formulation);
+    incompressibility_ = term.get();
+    terms_.push_back(std::move(term));
+  }
+
+  const int n = system_.num_dofs();
+  x_ = v_ = a_ = x_n_ = v_n_ = a_n_ = Eigen::VectorXd::Zero(n);
+  Zbar_.assign(owned_points_.size(), Vec9::Zero());
+  Zbar_n_ = Zbar_;
+  jobs_.resize(owned_points_.size());
+  dirichlet_value_ = [this](int k, double t) { return system_.prescribed_value(k, t); };
+}
+
+void Simulation::add_term(std::unique_ptr<MacroTerm> term) {
+  FE2_CHECK(!pattern_set_, "macro term '{}' added after the first solve", term->name());
+  terms_.push_back(std::move(term));
+}
+
+Vec9 Simulation::displacement_gradient(int point) const {
+  const MacroPoint& p = points_[point];
+  return p.B * gather(x_, displacement_dofs(spec_.mesh.element_nodes(p.element)));
 }
 
 Vec3 Simulation::deformed_position(const Vec3& X) const {
   const MeshPoint p = locate_point(spec_.mesh, X);
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+  tet_shape(spec_.mesh.order(), Vec4(p.bary[0], p.bary[1], p.bary[2], p.bary[3]), N, dN);
+  const std::vector<int> nodes = spec_.mesh.element_nodes(p.tet);
   Vec3 x = X;
-  for (int a = 0; a < 4; ++a) x += p.bary[a] * u_.segment<3>(3 * spec_.mesh.tets[p.tet][a]);
+  for (size_t a = 0; a < nodes.size(); ++a) x += N[a] * x_.segment<3>(3 * nodes[a]);
   return x;
+}
+
+std::vector<double> Simulation::nodal_pressure() const {
+  if (!system_.has_pressure()) return {};
+  const TetMesh& m = spec_.mesh;
+  std::vector<double> p(m.num_nodes(), 0.0);
+  for (int j = 0; j < system_.num_pressure(); ++j)
+    p[system_.vertex_of_pressure(j)] = x_[system_.pressure_offset() + j];
+  for (const auto& [edge, node] : m.edge_nodes) p[node] = 0.5 * (p[edge.first] + p[edge.second]);
+  return p;
 }
 
 void Simulation::agree_on_failure(const std::string& why) const {
@@ -93,212 +121,239 @@ void Simulation::agree_on_failure(const std::string& why) const {
 }
 
 std::vector<Vec9> Simulation::gather_point_stress() const {
-  std::vector<double> flat(9 * static_cast<size_t>(spec_.mesh.num_tets()), 0.0);
-  for (int e : owned_) std::copy(P_bar_[e].data(), P_bar_[e].data() + 9, flat.begin() + 9 * e);
+  std::vector<double> flat(9 * static_cast<size_t>(points_.size()), 0.0);
+  for (size_t s = 0; s < owned_points_.size(); ++s)
+    std::copy(responses_[s].P_bar.data(), responses_[s].P_bar.data() + 9,
+              flat.begin() + 9 * static_cast<size_t>(owned_points_[s]));
   group_.reduce_sum(flat.data(), static_cast<int>(flat.size()), 0);
-  std::vector<Vec9> P(spec_.mesh.num_tets());
-  for (int e = 0; e < spec_.mesh.num_tets(); ++e) P[e] = Eigen::Map<const Vec9>(&flat[9 * e]);
+  std::vector<Vec9> P(points_.size());
+  for (int k = 0; k < points_.size(); ++k) P[k] = Eigen::Map<const Vec9>(&flat[9 * static_cast<size_t>(k)]);
   return P;
 }
 
-void Simulation::compute_jobs(int step, int iteration, double t_new, double dt, bool apply_update) {
-  for (size_t k = 0; k < owned_.size(); ++k) {
-    const int e = owned_[k];
-    const auto& t = spec_.mesh.tets[e];
-    const Vec9 Zbar = pts_[e].B * gather(u_, t);
-    const Vec9 Zdot = spec_.dynamic ? Vec9(pts_[e].B * gather(v_, t)) : Vec9((Zbar - Zbar_n_[e]) / dt);
-    // Non-finite first: NaN compares false, so it would pass as "inverted" below.
-    if (!Zbar.allFinite() || !Zdot.allFinite())
-      throw NumericalError(fmt::format("non-finite macro displacement gradient Z̄ or rate Ż̄ at "
-                                       "element {}, t = {:.6g}, dt = {:.3g}",
-                                       e, t_new, dt));
-    const double J = (Mat3::Identity() + as_mat3(Zbar)).determinant();
-    if (!std::isfinite(J))
-      throw NumericalError(fmt::format("non-finite det F̄ at macro element {}, t = {:.6g}", e, t_new));
-    if (!(J > 0.0))
-      throw NumericalError(fmt::format("macro element {} inverted at t = {:.6g} (det F̄ = {:.3e})",
-                                       e, t_new, J));
-    proto::JobInput& job = jobs_[k];
-    job.unit = e;
-    job.step = step;
-    job.iteration = iteration;
-    job.time = t_new;
-    job.dt = dt;
-    job.apply_update = apply_update;
-    job.force_refresh = 0;
-    job.Zbar = R_[e] * Zbar;       // Z̄_μ = QᵀZ̄Q
-    job.Zbar_dot = R_[e] * Zdot;
+MacroState Simulation::state(double t_new, double dt) const {
+  return MacroState{x_, v_, a_, t_new, dt, spec_.dynamic ? 1.0 / (spec_.beta * dt * dt) : 0.0};
+}
+
+Eigen::VectorXd Simulation::dirichlet_increment(double t_new) const {
+  Eigen::VectorXd du_D = Eigen::VectorXd::Zero(system_.num_dofs());
+  const auto& prescribed = system_.prescribed();
+  for (size_t k = 0; k < prescribed.size(); ++k)
+    du_D[prescribed[k]] = dirichlet_value_(static_cast<int>(k), t_new) - x_n_[prescribed[k]];
+  return du_D;
+}
+
+// --- predict: Newmark a, v of the trial ū (quasi-static: nothing to predict)
+void Simulation::predict(double dt) {
+  if (!spec_.dynamic) return;
+  const double c = 1.0 / (spec_.beta * dt * dt);
+  a_ = c * (x_ - x_n_ - dt * v_n_) - (0.5 / spec_.beta - 1.0) * a_n_;
+  v_ = v_n_ + dt * ((1.0 - spec_.gamma) * a_n_ + spec_.gamma * a_);
+}
+
+// --- (a)–(e): the points answer, agreed valid on every coordinator
+void Simulation::evaluate_points(int step, int iteration, double t_new, double dt) {
+  std::string why;
+  try {
+    for (size_t s = 0; s < owned_points_.size(); ++s) {
+      const int k = owned_points_[s];
+      const MacroPoint& p = points_[k];
+      const Vec9 Zbar = p.B * gather(x_, point_dofs_[s]);
+      const Vec9 Zdot = spec_.dynamic ? Vec9(p.B * gather(v_, point_dofs_[s])) : Vec9((Zbar - Zbar_n_[s]) / dt);
+      // Non-finite first: NaN compares false, so it would pass as "inverted" below.
+      if (!Zbar.allFinite() || !Zdot.allFinite())
+        throw NumericalError(fmt::format("non-finite macro displacement gradient Z̄ or rate Ż̄ at "
+                                         "point {} (element {}), t = {:.6g}, dt = {:.3g}",
+                                         k, p.element, t_new, dt));
+      const double J = (Mat3::Identity() + as_mat3(Zbar)).determinant();
+      if (!std::isfinite(J))
+        throw NumericalError(fmt::format("non-finite det F̄ at point {} (element {}), t = {:.6g}", k,
+                                         p.element, t_new));
+      if (!(J > 0.0))
+        throw NumericalError(fmt::format("macro element {} inverted at point {}, t = {:.6g} (det F̄ = {:.3e})",
+                                         p.element, k, t_new, J));
+      Zbar_[s] = Zbar;
+      proto::JobInput& job = jobs_[s];
+      job.unit = k;
+      job.step = step;
+      job.iteration = iteration;
+      job.time = t_new;
+      job.dt = dt;
+      job.apply_update = iteration > 1;
+      job.force_refresh = 0;
+      job.Zbar = R_[k] * Zbar;  // Z̄_μ = QᵀZ̄Q
+      job.Zbar_dot = R_[k] * Zdot;
+    }
+  } catch (const NumericalError& e) {
+    why = e.what();
+  }
+  agree_on_failure(why);
+  evaluator_.evaluate(jobs_, results_);
+  for (const auto& r : results_) {
+    if (!why.empty()) break;
+    if (r.failed) why = r.message;
+    else if (!r.A_hom.allFinite() || !r.P_tilde.allFinite() || !r.P_bar.allFinite() ||
+             !std::isfinite(r.r_norm) || !std::isfinite(r.r_ref))
+      why = fmt::format("point {}: non-finite stress, tangent or residual at t = {:.6g}", r.unit, t_new);
+  }
+  agree_on_failure(why);
+  for (size_t s = 0; s < owned_points_.size(); ++s) {
+    const Mat9& R = R_[owned_points_[s]];
+    responses_[s].A = R.transpose() * results_[s].A_hom * R;  // back to the global frame
+    responses_[s].P_tilde = R.transpose() * results_[s].P_tilde;
+    responses_[s].P_bar = R.transpose() * results_[s].P_bar;
   }
 }
 
-bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
-  const int nfree = system_.num_free();
-  const int ndof = system_.num_dofs();
-  const auto& prescribed = system_.prescribed();
-  // Predictor: free DOFs keep their committed values; the prescribed increment Δū_D
-  // enters the first iteration through the right-hand side (−S̄_fD Δū_D).
-  Eigen::VectorXd du_D = Eigen::VectorXd::Zero(ndof);
-  for (size_t k = 0; k < prescribed.size(); ++k)
-    du_D[prescribed[k]] = system_.prescribed_value(k, t_new) - u_n_[prescribed[k]];
-  const bool has_du_D = du_D.squaredNorm() > 0.0;
-  const double c_mass = spec_.dynamic ? 1.0 / (spec_.beta * dt * dt) : 0.0;
+// --- (g): every term into S̄ and the residual
+void Simulation::assemble(double t_new, double dt, const Eigen::VectorXd* lift) {
+  assembly_->clear();
+  assembly_->set_lift(lift);
+  const MacroState s = state(t_new, dt);
+  std::string why;
+  try {
+    for (auto& term : terms_) term->assemble(s, *assembly_);
+  } catch (const NumericalError& e) {
+    why = e.what();
+  }
+  agree_on_failure(why);
+  assembly_->set_lift(nullptr);
+}
 
-  rec.residuals.clear();
-  rec.micro_residuals.clear();
-  std::vector<double> g(nfree);
-  Eigen::VectorXd f_int(ndof), f_ext(ndof);
-  for (int it = 1; it <= spec_.newton_max_iterations; ++it) {
-    if (spec_.dynamic) {  // Newmark: a, v of the trial ū
-      a_ = c_mass * (u_ - u_n_ - dt * v_n_) - (0.5 / spec_.beta - 1.0) * a_n_;
-      v_ = v_n_ + dt * ((1.0 - spec_.gamma) * a_n_ + spec_.gamma * a_);
+// --- (i): the true residual per field, and the units' (identical on every coordinator)
+Simulation::Residual Simulation::converge(double t_new) {
+  Eigen::VectorXd& f_int = assembly_->internal();
+  Eigen::VectorXd& f_ext = assembly_->external();
+  group_.allreduce_sum(f_int.data(), static_cast<int>(f_int.size()));
+  group_.allreduce_sum(f_ext.data(), static_cast<int>(f_ext.size()));
+  Residual res;
+  for (const auto& r : results_) res.micro = std::max(res.micro, r.r_norm / r.r_ref);
+  res.micro = group_.allreduce_max(res.micro);
+  const int nu = system_.displacement_dofs();
+  double r2 = 0.0;
+  for (int dof = 0; dof < nu; ++dof)
+    if (system_.eq(dof) >= 0) r2 += std::pow(f_ext[dof] - f_int[dof], 2);
+  const double F_ref = std::max(f_int.head(nu).norm(), f_ext.head(nu).norm());
+  res.displacement = F_ref > 0 ? std::sqrt(r2) / F_ref : std::sqrt(r2);
+  if (system_.has_pressure()) {
+    // R_p has the units of volume: relative to the nodal volumes ∫N_p, it is the
+    // volumetric strain J̄ − 1 (+ p/κ) the pressure has not yet removed.
+    const auto Rp = (f_int - f_ext).tail(system_.num_pressure());
+    res.volume = Rp.norm() / pressure_volumes_.norm();
+  }
+  if (!std::isfinite(res.displacement) || !std::isfinite(res.volume))
+    throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g}", t_new));
+  return res;
+}
+
+// --- (h): S̄ Δx = −R̃ on the coordinators (summed on the MUMPS host), Δx to all
+void Simulation::solve(int iteration) {
+  du_ = assembly_->rhs();
+  group_.reduce_sum(du_.data(), system_.num_free(), 0);
+  try {
+    mumps_.factorize_and_solve(values_, du_);
+  } catch (const SingularMatrixError& e) {
+    // Quasi-static iteration 1 assembles at the committed state (points have no rate
+    // dependence yet): the same matrix whatever the step, so no cut-back can help.
+    if (iteration == 1 && !spec_.dynamic)
+      throw SingularMatrixError(std::string(e.what()) + "; it is the matrix of the last "
+                                "converged state, so cutting the step back cannot help",
+                                true);
+    throw;
+  }
+  group_.bcast(du_.data(), system_.num_free(), 0);
+}
+
+// --- (j): x += Δx (and the prescribed increment after the first iteration)
+void Simulation::update(bool first, const Eigen::VectorXd& du_D) {
+  if (!std::all_of(du_.begin(), du_.end(), [](double x) { return std::isfinite(x); }))
+    throw NumericalError("non-finite macro correction Δx");
+  for (int dof = 0; dof < system_.num_dofs(); ++dof)
+    if (system_.eq(dof) >= 0) x_[dof] += du_[system_.eq(dof)];
+  if (first) x_ += du_D;
+}
+
+bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
+  if (!pattern_set_) {
+    for (auto& term : terms_) term->declare(system_);
+    values_.assign(system_.rows().size(), 0.0);
+    mumps_.set_pattern(system_.rows(), system_.cols());
+    assembly_ = std::make_unique<MacroAssembly>(system_, values_);
+    if (incompressibility_) {
+      pressure_volumes_ = incompressibility_->pressure_volumes();
+      group_.allreduce_sum(pressure_volumes_.data(), static_cast<int>(pressure_volumes_.size()));
     }
+    pattern_set_ = true;
+  }
+  const Eigen::VectorXd du_D = dirichlet_increment(t_new);
+  const bool has_du_D = du_D.squaredNorm() > 0.0;
+  rec.residuals.clear();
+  rec.volume_residuals.clear();
+  rec.micro_residuals.clear();
+  for (int it = 1; it <= spec_.newton_max_iterations; ++it) {
     IterationTiming timing;
     timing.step = step;
     timing.iteration = it;
-    const double t_begin = wall_seconds();
-    // (a) Z̄ at the points, agreed valid on every coordinator, then (b–e)
-    std::string why;
-    try {
-      compute_jobs(step, it, t_new, dt, it > 1);
-    } catch (const NumericalError& e) {
-      why = e.what();
-    }
-    agree_on_failure(why);
-    evaluator_.evaluate(jobs_, results_);
-    timing.micro_lc = wall_seconds() - t_begin;
-    for (const auto& r : results_) {
-      if (!why.empty()) break;
-      if (r.failed) why = r.message;
-      else if (!r.A_hom.allFinite() || !r.P_tilde.allFinite() || !r.P_bar.allFinite() ||
-               !std::isfinite(r.r_norm) || !std::isfinite(r.r_ref))
-        why = fmt::format("point {}: non-finite stress, tangent or residual at t = {:.6g}",
-                          r.unit, t_new);
-    }
-    agree_on_failure(why);
-    const double t_macro = wall_seconds();
-
-    // (g) assemble S̄ and ḡ; f_int (with P̄) for the convergence test
-    std::fill(values_.begin(), values_.end(), 0.0);
-    std::fill(g.begin(), g.end(), 0.0);
-    f_int.setZero();
-    f_ext.setZero();
-    double micro = 0.0;
     const bool first = it == 1 && has_du_D;
-    for (size_t k = 0; k < owned_.size(); ++k) {
-      const int e = owned_[k];
-      const proto::JobOutput& r = results_[k];
-      const TetPoint& p = pts_[e];
-      const auto& t = spec_.mesh.tets[e];
-      const Mat9 A = R_[e].transpose() * r.A_hom * R_[e];   // back to the global frame
-      const Vec9 P_tilde = R_[e].transpose() * r.P_tilde;
-      P_bar_[e] = R_[e].transpose() * r.P_bar;
-      Mat12 Ke = p.volume * p.B.transpose() * A * p.B;      // |ē_k| B̄ᵀ 𝔸_hom B̄
-      Vec12 fe = p.volume * p.B.transpose() * P_tilde;
-      Vec12 fe_int = p.volume * p.B.transpose() * P_bar_[e];
-      if (spec_.dynamic) {
-        const Mat12 Me = tet_mass(spec_.density, p.volume);
-        const Vec12 inertia = Me * gather(a_, t);
-        Ke += c_mass * Me;
-        fe += inertia;
-        fe_int += inertia;
+    bool converged = false;
+    {
+      ScopedWallTimer entire(timing.entire);
+      predict(dt);
+      {
+        ScopedWallTimer t(timing.micro_lc);
+        evaluate_points(step, it, t_new, dt);
       }
-      system_.add_tet(static_cast<int>(k), Ke, values_);
-      const Vec12 lift = first ? Vec12(Ke * gather(du_D, t)) : Vec12::Zero();
-      for (int a = 0; a < 4; ++a)
-        for (int i = 0; i < 3; ++i) {
-          const int dof = 3 * t[a] + i;
-          f_int[dof] += fe_int[3 * a + i];
-          if (system_.eq(dof) >= 0) g[system_.eq(dof)] -= fe[3 * a + i] + lift[3 * a + i];
-        }
-      micro = std::max(micro, r.r_norm / r.r_ref);
-    }
-    const auto& tris = system_.pressure_triangles();
-    for (size_t k = 0; k < tris.size(); ++k) {
-      const PressureSpec& ps = spec_.pressure[tris[k].load];
-      const double pr = ps.value * ramp_factor(ps.ramp, t_new, spec_.t_end);
-      std::array<Vec3, 3> x;
-      for (int a = 0; a < 3; ++a)
-        x[a] = spec_.mesh.nodes[tris[k].nodes[a]] + u_.segment<3>(3 * tris[k].nodes[a]);
-      Eigen::Matrix<double, 9, 1> f;
-      Eigen::Matrix<double, 9, 9> dfdx;
-      follower_pressure(x, pr, f, dfdx);
-      const Eigen::Matrix<double, 9, 9> Kp = -dfdx;  // S̄ gets −∂f_ext/∂ū
-      system_.add_triangle(static_cast<int>(k), Kp, values_);
-      Eigen::Matrix<double, 9, 1> lift = Eigen::Matrix<double, 9, 1>::Zero();
-      if (first)
-        for (int a = 0; a < 3; ++a) lift += Kp.middleCols<3>(3 * a) * du_D.segment<3>(3 * tris[k].nodes[a]);
-      for (int a = 0; a < 3; ++a)
-        for (int i = 0; i < 3; ++i) {
-          const int dof = 3 * tris[k].nodes[a] + i;
-          f_ext[dof] += f[3 * a + i];
-          if (system_.eq(dof) >= 0) g[system_.eq(dof)] += f[3 * a + i] - lift[3 * a + i];
-        }
-    }
-
-    // (i) convergence: true residual with P̄ on free DOFs, and every unit's ‖r‖ (sums
-    // and maxima over all coordinators, identical on each)
-    group_.allreduce_sum(f_int.data(), ndof);
-    group_.allreduce_sum(f_ext.data(), ndof);
-    micro = group_.allreduce_max(micro);
-    double res2 = 0.0;
-    for (int dof = 0; dof < ndof; ++dof)
-      if (system_.eq(dof) >= 0) res2 += std::pow(f_ext[dof] - f_int[dof], 2);
-    const double F_ref = std::max(f_int.norm(), f_ext.norm());
-    const double res = F_ref > 0 ? std::sqrt(res2) / F_ref : std::sqrt(res2);
-    if (!std::isfinite(res)) throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g}", t_new));
-    rec.residuals.push_back(res);
-    rec.micro_residuals.push_back(micro);
-    double work[3] = {0.0, 0.0, 0.0};  // GMRES iterations, refreshes, unit CPU seconds
-    for (const auto& r : results_) {
-      work[0] += r.gmres_iterations;
-      work[1] += r.kind == proto::Refresh::refresh;
-      work[2] += r.cpu_seconds;
-    }
-    group_.allreduce_sum(work, 3);
-    rec.gmres_iterations += static_cast<int>(work[0]);
-    rec.refreshes += static_cast<int>(work[1]);
-    rec.micro_cpu_seconds += work[2];
-    spdlog::debug("step {} t={:.6g} it {}: |R|/F = {:.3e}, max |r|/r_ref = {:.3e}", step, t_new,
-                  it, res, micro);
-    const bool converged = !first && res <= spec_.newton_rtol && micro <= spec_.micro_rtol;
-    if (!converged) {
-      // (h) S̄ Δū = ḡ on the coordinators (ḡ summed on the MUMPS host), Δū to all
-      group_.reduce_sum(g.data(), nfree, 0);
-      try {
-        mumps_.factorize_and_solve(values_, g);
-      } catch (const SingularMatrixError& e) {
-        // Quasi-static iteration 1 assembles at the committed ū (points have no rate
-        // dependence yet): the same matrix whatever the step, so no cut-back can help.
-        if (it == 1 && !spec_.dynamic)
-          throw SingularMatrixError(std::string(e.what()) + "; it is the matrix of the last "
-                                    "converged state, so cutting the step back cannot help",
-                                    true);
-        throw;
+      ScopedWallTimer macro(timing.macro);
+      {
+        ScopedWallTimer t(timing.assemble);
+        assemble(t_new, dt, first ? &du_D : nullptr);
       }
-      group_.bcast(g.data(), nfree, 0);
-      if (!std::all_of(g.begin(), g.end(), [](double x) { return std::isfinite(x); }))
-        throw NumericalError(fmt::format("non-finite macro correction Δū at t = {:.6g}", t_new));
+      const Residual res = converge(t_new);
+      rec.residuals.push_back(res.displacement);
+      if (system_.has_pressure()) rec.volume_residuals.push_back(res.volume);
+      rec.micro_residuals.push_back(res.micro);
+      double work[3] = {0.0, 0.0, 0.0};  // GMRES iterations, refreshes, unit CPU seconds
+      for (const auto& r : results_) {
+        work[0] += r.gmres_iterations;
+        work[1] += r.kind == proto::Refresh::refresh;
+        work[2] += r.cpu_seconds;
+      }
+      group_.allreduce_sum(work, 3);
+      rec.gmres_iterations += static_cast<int>(work[0]);
+      rec.refreshes += static_cast<int>(work[1]);
+      rec.micro_cpu_seconds += work[2];
+      spdlog::debug("step {} t={:.6g} it {}: |R_u|/F = {:.3e}{}, max |r|/r_ref = {:.3e}", step, t_new,
+                    it, res.displacement,
+                    system_.has_pressure() ? fmt::format(", |R_p|/V = {:.3e}", res.volume) : "",
+                    res.micro);
+      converged = !first && res.displacement <= spec_.newton_rtol && res.volume <= spec_.newton_rtol &&
+                  res.micro <= spec_.micro_rtol;
+      if (!converged) {
+        ScopedWallTimer t(timing.solve);
+        solve(it);
+      }
     }
-    timing.macro = wall_seconds() - t_macro;
-    timing.entire = wall_seconds() - t_begin;
     if (on_iteration_) on_iteration_(timing);
     if (converged) {
       rec.iterations += it;
       return true;
     }
-    // (j) ū += Δū
-    for (int dof = 0; dof < ndof; ++dof)
-      if (system_.eq(dof) >= 0) u_[dof] += g[system_.eq(dof)];
-    if (first) u_ += du_D;
+    try {
+      update(first, du_D);
+    } catch (const NumericalError& e) {
+      throw NumericalError(fmt::format("{} at t = {:.6g}", e.what(), t_new));
+    }
   }
   rec.iterations += spec_.newton_max_iterations;
   return false;
 }
 
-void Simulation::commit(double t_new) {
+void Simulation::commit(double t_new, double dt) {
   evaluator_.commit_step();
-  for (int e : owned_) Zbar_n_[e] = pts_[e].B * gather(u_, spec_.mesh.tets[e]);
-  u_n_ = u_;
+  const MacroState s = state(t_new, dt);
+  for (auto& term : terms_) term->commit(s);
+  Zbar_n_ = Zbar_;
+  x_n_ = x_;
   v_n_ = v_;
   a_n_ = a_;
   t_n_ = t_new;
@@ -306,7 +361,9 @@ void Simulation::commit(double t_new) {
 
 void Simulation::rollback() {
   evaluator_.rollback_step();
-  u_ = u_n_;
+  for (auto& term : terms_) term->rollback();
+  Zbar_ = Zbar_n_;
+  x_ = x_n_;
   v_ = v_n_;
   a_ = a_n_;
 }
@@ -329,9 +386,12 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
       try {
         ok = newton(step, t_new, t_new - t_n_, rec);
         if (!ok)
-          why = fmt::format("Newton did not converge in {} iterations (last |R|/F = {:.3e}, "
+          why = fmt::format("Newton did not converge in {} iterations (last |R|/F = {:.3e}{}, "
                             "max unit |r|/r_ref = {:.3e})",
                             spec_.newton_max_iterations, rec.residuals.back(),
+                            rec.volume_residuals.empty()
+                                ? ""
+                                : fmt::format(", |R_p|/V = {:.3e}", rec.volume_residuals.back()),
                             rec.micro_residuals.back());
       } catch (const SingularMatrixError& e) {
         if (e.at_committed_state) {
@@ -345,7 +405,7 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
         why = e.what();
       }
       if (ok) {
-        commit(t_new);
+        commit(t_new, t_new - t_n_);
         continue;
       }
       rollback();

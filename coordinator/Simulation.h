@@ -1,23 +1,29 @@
 #pragma once
-// The macro problem and its Newton driver (paper Fig. 5), in the order the algorithm
-// reads: for each step, for each Newton iteration —
-//   (a) Z̄_k = B̄_k ū at every point, rotated into the unit frame (Z̄_μ = R Z̄)
-//   (b–e) the points answer (𝔸_hom, P̃, P̄)           [PointEvaluator]
-//   (g) S̄ = Σ |ē_k| B̄ᵀ 𝔸_hom B̄ (+ inertia, follower pressure), ḡ = f_ext − Σ |ē_k| B̄ᵀ P̃
-//   (i) converged when the macro residual (with P̄) and every unit's ‖r‖ are small
-//   (h) solve S̄ Δū = ḡ (MUMPS), (j) ū += Δū
-// A step that fails (divergence, NaN, inverted element, iteration cap) is rolled back
-// and cut in half, up to newton.max_cutbacks times; then the run stops, saying where
-// and why.
+// The macro problem and its Newton driver (paper Fig. 5), in named phases:
+//   predict          Newmark rates of the trial ū; the prescribed increment Δū_D
+//   evaluate points  (a) Z̄_k = B̄_k ū at every integration point, rotated into the
+//                    point's frame (Z̄_μ = R Z̄), with Ż̄, t, Δt; (b–e) the points answer
+//                    (𝔸_hom, P̃, P̄)                               [PointEvaluator]
+//   assemble         (g) every macro term (point stress, inertia, follower pressure,
+//                    incompressibility) into S̄ and the residual    [MacroTerm]
+//   converge         (i) the true residual (with P̄) per field, and every unit's ‖r‖
+//   solve            (h) S̄ Δx = −R̃ on the coordinators (MUMPS)
+//   update           (j) x += Δx
+// Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
+// NaN, inverted element, iteration cap) is rolled back and cut in half, up to
+// newton.max_cutbacks times; then the run stops, saying where and why.
+#include "coordinator/MacroPoints.h"
 #include "coordinator/MacroSystem.h"
+#include "coordinator/MacroTerm.h"
 #include "coordinator/MumpsSolver.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/RunSpec.h"
 #include "coordinator/Trace.h"
-#include "coordinator/tet_kinematics.h"
+#include "coordinator/macro_terms.h"
 #include "proto/Transport.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,7 +34,8 @@ struct StepRecord {
   double time = 0.0;
   int iterations = 0;                 ///< Newton iterations of the accepted (sub)steps
   int cutbacks = 0;
-  std::vector<double> residuals;      ///< macro ‖R_free‖ / F_ref per iteration (last substep)
+  std::vector<double> residuals;      ///< macro ‖R_u,free‖ / F_ref per iteration (last substep)
+  std::vector<double> volume_residuals;///< mixed: ‖R_p‖ / ‖∫N_p‖ per iteration (last substep)
   std::vector<double> micro_residuals;///< max_k ‖r_k‖ / r_ref,k per iteration (last substep)
   int gmres_iterations = 0;
   int refreshes = 0;
@@ -48,10 +55,10 @@ class Simulation {
  public:
   /// One process owning every element. `points` is lent.
   Simulation(const RunSpec& spec, PointEvaluator& points);
-  /// A coordinator of a farm owning `owned_tets` (ascending); `coordinators` is lent.
-  /// @note Collective on the coordinator group (the MUMPS communicator).
+  /// A coordinator of a farm owning `owned_elements` (ascending) and their integration
+  /// points; `coordinators` is lent. @note Collective on the coordinator group (MUMPS).
   Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
-             std::vector<int> owned_tets);
+             std::vector<int> owned_elements);
 
   /// Called after every accepted step (for output); may be empty.
   using StepHook = std::function<void(const StepRecord&)>;
@@ -60,13 +67,28 @@ class Simulation {
   /// @note Collective.
   RunResult run(const StepHook& on_step = {}, const IterationHook& on_iteration = {});
 
+  /// Adds a macro term (tests: manufactured body forces). Before the first run().
+  void add_term(std::unique_ptr<MacroTerm> term);
+  /// Replaces the Dirichlet values: value(dof, t) for every prescribed DOF (tests:
+  /// manufactured solutions). Before the first run().
+  void set_dirichlet_values(std::function<double(int dof, double t)> value) { dirichlet_value_ = std::move(value); }
+
   const RunSpec& spec() const { return spec_; }
-  const Eigen::VectorXd& displacement() const { return u_; }
-  const std::vector<TetPoint>& points() const { return pts_; }
+  const MacroSystem& system() const { return system_; }
+  const MacroPoints& points() const { return points_; }
+  /// Every DOF: ū (node-major) then p.
+  const Eigen::VectorXd& state() const { return x_; }
+  /// ū alone (3 per mesh node).
+  Eigen::VectorXd displacement() const { return x_.head(system_.displacement_dofs()); }
+  /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
+  /// ends, which is the P1 field there); empty without a pressure field.
+  std::vector<double> nodal_pressure() const;
   /// Per point, the last P̄ in the global frame, gathered on coordinator 0.
   /// @note Collective.
   std::vector<Vec9> gather_point_stress() const;
-  const Mat3& frame(int e) const { return Q_[e]; }
+  const Mat3& frame(int point) const { return Q_[point]; }
+  /// Z̄ at point k of the current ū.
+  Vec9 displacement_gradient(int point) const;
   /// Deformed position of a reference point inside the mesh.
   Vec3 deformed_position(const Vec3& X) const;
 
@@ -74,31 +96,52 @@ class Simulation {
   bool newton(int step, double t_new, double dt, StepRecord& rec);
 
  private:
-  void compute_jobs(int step, int iteration, double t_new, double dt, bool apply_update);
+  // Phases of one Newton iteration.
+  void predict(double dt);
+  void evaluate_points(int step, int iteration, double t_new, double dt);
+  void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
+  struct Residual {
+    double displacement = 0.0, volume = 0.0, micro = 0.0;
+  };
+  Residual converge(double t_new);
+  void solve(int iteration);
+  void update(bool first, const Eigen::VectorXd& du_D);
+
+  MacroState state(double t_new, double dt) const;
+  Eigen::VectorXd dirichlet_increment(double t_new) const;
   /// Throws the same NumericalError on every coordinator if any of them failed
   /// (`why` non-empty on the ones that did). @note Collective.
   void agree_on_failure(const std::string& why) const;
-  void commit(double t_new);
+  void commit(double t_new, double dt);
   void rollback();
 
   const RunSpec& spec_;
   PointEvaluator& evaluator_;
   proto::Group self_;                  ///< MPI_COMM_SELF for the one-process form
   const proto::Group& group_;
-  std::vector<int> owned_;             ///< this coordinator's tets (= units)
+  std::vector<int> owned_elements_;
+  MacroPoints points_;
+  std::vector<int> owned_points_;      ///< this coordinator's points (= units), ascending
   MacroSystem system_;
+  std::vector<std::unique_ptr<MacroTerm>> terms_;
+  IncompressibilityTerm* incompressibility_ = nullptr;
+  Eigen::VectorXd pressure_volumes_;   ///< ∫N_p over all elements (mixed)
   MumpsSolver mumps_;
-  std::vector<TetPoint> pts_;
-  std::vector<Mat3> Q_;
+  bool pattern_set_ = false;
+  std::vector<Mat3> Q_;                ///< frame per point
   std::vector<Mat9> R_;
-  // Macro state: current and committed (u, v, a node-major 3a+i).
-  Eigen::VectorXd u_, v_, a_, u_n_, v_n_, a_n_;
-  std::vector<Vec9> Zbar_n_;           ///< committed Z̄ per point (for Ż̄ when quasi-static)
-  std::vector<Vec9> P_bar_;
+  std::vector<std::vector<int>> point_dofs_;  ///< per owned point: its element's ū DOFs
+  std::function<double(int, double)> dirichlet_value_;
+  // Macro state: current and committed (every DOF; v, a used on the ū block).
+  Eigen::VectorXd x_, v_, a_, x_n_, v_n_, a_n_;
+  std::vector<Vec9> Zbar_, Zbar_n_;    ///< per owned point: current and committed Z̄
+  std::vector<PointResponse> responses_;
   double t_n_ = 0.0;
   std::vector<proto::JobInput> jobs_;
   std::vector<proto::JobOutput> results_;
   std::vector<double> values_;         ///< S̄ triplet values
+  std::vector<double> du_;             ///< Newton correction on the free equations
+  std::unique_ptr<MacroAssembly> assembly_;
   IterationHook on_iteration_;
 };
 

@@ -20,7 +20,8 @@ Trace::Trace(const std::string& dir)
 void Trace::iteration(const IterationTiming& t) {
   const nlohmann::json j = {{"step", t.step},         {"iteration", t.iteration},
                             {"entire", t.entire},     {"micro_lc", t.micro_lc},
-                            {"macro", t.macro},       {"comm1", t.comm1},
+                            {"macro", t.macro},       {"assemble", t.assemble},
+                            {"solve", t.solve},       {"comm1", t.comm1},
                             {"comm2", t.comm2},       {"bytes", t.bytes},
                             {"migrations", t.migrations}, {"jobs", t.jobs}};
   units_.flush();

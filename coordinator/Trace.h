@@ -1,7 +1,8 @@
 #pragma once
 // Load-balance traces, JSON Lines in the output folder (DESIGN §3, paper §IV-C):
-//   trace_iterations.jsonl  per (step, iteration): entire, micro_lc, macro, comm1,
-//                           comm2 (seconds, coordinator 0), bytes, migrations
+//   trace_iterations.jsonl  per (step, iteration): entire, micro_lc, macro (= assemble
+//                           + solve + the rest), comm1, comm2 (seconds, coordinator 0),
+//                           bytes, migrations
 //   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
 //                           wall), idle, wait, t_begin/t_end, migrations, bytes
 //   trace_units.jsonl       per (step, iteration, unit): worker, cost, refresh_cost,
@@ -21,7 +22,9 @@ struct IterationTiming {
   int step = 0, iteration = 0;
   double entire = 0.0;    ///< whole Newton iteration, (a)–(j)
   double micro_lc = 0.0;  ///< dispatch to last result: micro work + load imbalance + comm
-  double macro = 0.0;     ///< (g) assembly and (h) solve
+  double macro = 0.0;     ///< (g) assembly, (i) convergence test and (h) solve
+  double assemble = 0.0;  ///< (g) the macro terms
+  double solve = 0.0;     ///< (h) MUMPS
   double comm1 = 0.0, comm2 = 0.0;
   long long bytes = 0;
   int migrations = 0;

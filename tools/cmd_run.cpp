@@ -23,14 +23,20 @@ namespace fe2::cli {
 namespace {
 
 std::string describe(const RunSpec& spec) {
-  int units = 0, dofs = 0;
-  for (int e = 0; e < spec.mesh.num_tets(); ++e) {
-    const auto& m = spec.models[spec.model_index_of_tet(e)];
-    if (m.kind == PointModelSpec::Kind::fe2)
-      ++units, dofs += m.micro ? m.micro->num_dofs() : m.plan->memory.dofs;
+  long long units = 0, dofs = 0;
+  for (int m_index : spec.model_of_points()) {
+    const auto& m = spec.models[m_index];
+    if (m.kind == PointModelSpec::Kind::fe2) ++units, dofs += m.plan->memory.dofs;
   }
-  return fmt::format("{} nodes, {} tetrahedra ({} FE² units, {} micro DOF in all), {} steps{}",
-                     spec.mesh.num_nodes(), spec.mesh.num_tets(), units, dofs, spec.steps,
+  const bool mixed = spec.formulation.mixed;
+  const int order = spec.mesh.order();
+  return fmt::format("{} nodes, {} {}-node tetrahedra, {} ({} points: {} per element; {} FE² units, "
+                     "{} micro DOF in all), {} steps{}",
+                     spec.mesh.num_nodes(), spec.mesh.num_tets(), order == 1 ? 4 : 10,
+                     !mixed ? fmt::format("displacement P{}", order)
+                            : order == 2 ? std::string("mixed Taylor–Hood P2/P1")
+                                         : std::string("mixed stabilized P1/P1"),
+                     spec.num_points(), spec.points_per_element, units, dofs, spec.steps,
                      spec.dynamic ? ", Newmark dynamics" : ", quasi-static");
 }
 
@@ -168,7 +174,8 @@ int run(const RunOptions& o) {
     layout = FarmLayout::make(spec, world.size(), o.coordinators);
     check_run_memory(spec, layout, o.memory_limit);
     UnitStore::fault_from_env();  // a malformed test hook is bad input on every rank
-    build_unit_models(spec);
+    // Only ranks that hold units build unit models (a coordinator-only rank never does).
+    if (layout.is_worker(rank)) build_unit_models(spec);
   } catch (const std::exception& e) {  // InputError, or e.g. bad_alloc on a huge mesh
     input_error = e.what();
   }
@@ -211,7 +218,7 @@ int run(const RunOptions& o) {
                    FarmOptions::name_of(spec.farm.policy));
     }
     FarmEvaluator points(transport, coords, layout, spec, store.get(), trace.get());
-    Simulation sim(spec, points, coords, layout.owned_units(rank));
+    Simulation sim(spec, points, coords, layout.owned_elements(rank));
     const double t0 = wall_seconds();
     auto write_fields = [&](int step, double time) {
       const auto P = sim.gather_point_stress();

@@ -499,7 +499,7 @@ TetMesh read_gmsh_tets(const std::string& file) {
                                  file));
   const bool is_quadratic = count_elements(quadratic) > 0;
   const auto tet_blocks = is_quadratic ? quadratic : linear;
-  if (count_elements(tet_blocks) == 0) fail_no_elements(d, kTet, "4-node or 10-node (type 11) tetrahedra");
+  if (count_elements(tet_blocks) == 0) fail_no_elements(d, kTet, "4-node tetrahedra (or 10-node, type 11)");
 
   TetMesh m;
   const std::vector<int> index = compact_nodes(d, tet_blocks, m.nodes);

@@ -22,23 +22,57 @@ SchemaKeys isotropic_keys() {
           {"nu", number(nullopt, Range{-1.0, 0.5, true, true}, "Poisson's ratio")}};
 }
 
+/// "volumetric" and "kappa" of the laws in the material frame (volumetric.h).
+SchemaKeys volumetric_keys(double default_kappa) {
+  return {{"volumetric", choice("penalty", {"penalty", "none"},
+                                "volumetric energy: penalty U = kappa/2 (J-1)^2, or none (a "
+                                "mixed formulation's pressure enforces J = 1)")},
+          {"kappa", number(default_kappa, Range::positive(),
+                           "volumetric penalty kappa (Pa), U = kappa/2 (J-1)^2")}};
+}
+
+SchemaKeys guccione_keys() {
+  SchemaKeys k = {{"C", number(880.0, Range::positive(), "stiffness scale C (Pa)")},
+                  {"bf", number(18.5, Range::positive(), "fibre exponent b_f")},
+                  {"bt", number(3.58, Range::positive(), "transverse exponent b_t")},
+                  {"bfs", number(1.63, Range::positive(), "fibre-shear exponent b_fs")}};
+  for (auto& v : volumetric_keys(1.0e5)) k.push_back(std::move(v));
+  return k;
+}
+
+/// Holzapfel & Ogden 2009 Table 1 defaults (common/materials/HolzapfelOgden.h).
+SchemaKeys holzapfel_ogden_keys() {
+  const Range positive = Range::positive(), non_negative = Range::non_negative();
+  SchemaKeys k = {
+      {"a", number(59.0, positive, "isotropic modulus a (Pa)")},
+      {"b", number(8.023, positive, "isotropic exponent b")},
+      {"af", number(18472.0, non_negative, "fibre modulus a_f (Pa), acts in fibre tension only")},
+      {"bf", number(16.026, positive, "fibre exponent b_f")},
+      {"as", number(2481.0, non_negative, "sheet modulus a_s (Pa), acts in sheet tension only")},
+      {"bs", number(11.12, positive, "sheet exponent b_s")},
+      {"afs", number(216.0, non_negative, "fibre-sheet coupling modulus a_fs (Pa)")},
+      {"bfs", number(11.436, positive, "fibre-sheet coupling exponent b_fs")},
+      {"isotropic", choice("isochoric", {"isochoric", "full"},
+                           "invariant of the isotropic term: isochoric J^(-2/3) I1 (stress-free "
+                           "reference) or full I1 (reference stress a I, for a mixed "
+                           "formulation)")}};
+  for (auto& v : volumetric_keys(1.0e5)) k.push_back(std::move(v));
+  return k;
+}
+
 /// common/materials/material_factory.cpp
 Schema material() {
   static const Schema s = defined(
       "material",
       object(true, "constitutive law",
-             {{"model", choice(nullopt, {"neo_hookean", "st_venant_kirchhoff", "guccione"},
+             {{"model", choice(nullopt,
+                               {"neo_hookean", "st_venant_kirchhoff", "guccione", "holzapfel_ogden"},
                                "constitutive law")}},
              "model",
              {{"neo_hookean", isotropic_keys()},
               {"st_venant_kirchhoff", isotropic_keys()},
-              {"guccione",
-               {{"C", number(880.0, Range::positive(), "stiffness scale C (Pa)")},
-                {"bf", number(18.5, Range::positive(), "fibre exponent b_f")},
-                {"bt", number(3.58, Range::positive(), "transverse exponent b_t")},
-                {"bfs", number(1.63, Range::positive(), "fibre-shear exponent b_fs")},
-                {"kappa", number(1.0e5, Range::positive(),
-                                 "volumetric penalty kappa (Pa), U = kappa/2 (J-1)^2")}}}}));
+              {"guccione", guccione_keys()},
+              {"holzapfel_ogden", holzapfel_ogden_keys()}}));
   return s;
 }
 
@@ -122,6 +156,10 @@ Schema ramp() {
                 "value(t) = value·t/t_end (linear) or value (constant)");
 }
 
+Schema mesh_order() {
+  return integer(1, Range::closed(1, 2), "element order: 1 (4-node) or 2 (10-node tetrahedra)");
+}
+
 /// coordinator/RunSpec.cpp
 Schema make_run_spec_schema() {
   const Range any = Range::any();
@@ -131,8 +169,8 @@ Schema make_run_spec_schema() {
        {"description", string("", "what the scene shows and how to view it")},
        {"mesh",
         object(true, "macro mesh",
-               {{"kind", choice("box", {"box", "gmsh"},
-                                "structured box of tetrahedra, or a Gmsh 4.1 file")}},
+               {{"kind", choice("box", {"box", "gmsh", "lv"},
+                                "structured box of tetrahedra, a Gmsh 4.1 file, or an idealized left ventricle")}},
                "kind",
                {{"box",
                  {{"lo", numbers(3, std::vector<double>{0, 0, 0}, "lower corner")},
@@ -142,8 +180,17 @@ Schema make_run_spec_schema() {
                   {"region_slabs",
                    object(false, "split the box into equal slabs with region tags 1..count",
                           {{"axis", choice("x", {"x", "y", "z"}, "slab normal")},
-                           {"count", integer(1, Range::closed(1, 1000), "number of slabs")}})}}},
-                {"gmsh", {{"file", string(nullopt, "Gmsh 4.1 ASCII mesh file")}}}})},
+                           {"count", integer(1, Range::closed(1, 1000), "number of slabs")}})},
+                  {"order", mesh_order()}}},
+                {"gmsh", {{"file", string(nullopt, "Gmsh 4.1 ASCII mesh file")}}},
+                {"lv",
+                 {{"endo", numbers(2, std::vector<double>{7, 17},
+                                   "endocardial semi-axes [short, long] (long axis along z)")},
+                  {"epi", numbers(2, std::vector<double>{10, 20}, "epicardial semi-axes [short, long]")},
+                  {"base_z", number(5.0, any, "base plane z = base_z; the apex points to -z")},
+                  {"divisions", integers(3, std::vector<double>{16, 8, 2}, Range::closed(1, 1000),
+                                         "[circumferential, apex-to-base, transmural] divisions (6 tets per cell)")},
+                  {"order", mesh_order()}}}})},
        {"frame",
         object(false, "material frame (fibre, sheet, normal)",
                {{"kind", choice("constant", {"constant", "rotating", "file", "rule"}, "fibre frame rule")}},
@@ -172,7 +219,7 @@ Schema make_run_spec_schema() {
                   {"endo", string("endo", "named surface of the (LV) endocardium: φ = 0")},
                   {"epi", string("epi", "named surface of the epicardium: φ = 1")},
                   {"base", string("base", "named surface of the base: ψ = 1")},
-                  {"apex", string("apex", "named node set (or surface) of the apex: ψ = 0")},
+                  {"apex", string("", "named node set of the apex: ψ = 0 (\"\": the epi node farthest from the base)")},
                   {"rv_endo", string("", "named surface of the RV endocardium (biventricular); \"\": LV only")}}}})},
        {"models",
         map(true, "point models by name", "name",
@@ -205,6 +252,26 @@ Schema make_run_spec_schema() {
                      {{"surface", string(nullopt, "named boundary surface")},
                       {"value", number(nullopt, any, "pressure at t_end (Pa)")},
                       {"ramp", ramp()}}))},
+       {"formulation",
+        object(false, "macro discretization: displacement only, or mixed displacement–pressure",
+               {{"kind", choice("displacement", {"displacement", "mixed"},
+                                "displacement only, or a pressure field enforcing J̄ = 1 (mixed)")},
+                {"quadrature_degree",
+                 optional(integer(nullopt, Range::closed(0, 8),
+                                  "tet rule degree; one point model per quadrature point "
+                                  "(default 2(order − 1): 1 point for linear, 4 for quadratic tets)"))}},
+               "kind",
+               {{"displacement", {}},
+                {"mixed",
+                 {{"bulk_modulus",
+                   optional(number(nullopt, Range::positive(),
+                                   "κ (Pa) of the perturbed Lagrangian J̄ − 1 = −p/κ; absent: a "
+                                   "Lagrange multiplier, J̄ = 1 exactly"))},
+                  {"stabilization_modulus",
+                   optional(number(nullopt, Range::positive(),
+                                   "μ_s (Pa) of the pressure-projection stabilization of equal-order "
+                                   "P1/P1 (required on linear meshes; about the tissue's shear "
+                                   "modulus)"))}}}})},
        {"time",
         object(false, "time stepping",
                {{"t_end", number(1.0, Range::positive(), "end time")},

@@ -38,10 +38,8 @@ void expect_schur_route_equals_direct_solve(const RunSpec& spec) {
 
   // The full system of Eq. (5), assembled explicitly, with each unit's blocks at its
   // state: A_wk = |e|K, C_k = |e| G R B̄, lower-left |e| (R B̄)ᵀ H, Ā = Σ|e| (RB̄)ᵀ⟨𝔸⟩ RB̄.
-  std::vector<int> all(spec.mesh.num_tets());
-  std::iota(all.begin(), all.end(), 0);
-  const MacroSystem sys(spec, all);
-  const auto pts = tet_points(spec.mesh);
+  const MacroSystem sys(spec, false);
+  const MacroPoints pts(spec.mesh);
   std::vector<int> offset(nu + 1, 0);
   for (int k = 0; k < nu; ++k) offset[k + 1] = offset[k] + units[k]->model().num_dofs();
   const int nw = offset[nu], nbar = sys.num_free(), n = nw + nbar;
@@ -52,7 +50,7 @@ void expect_schur_route_equals_direct_solve(const RunSpec& spec) {
     MicroUnit::System s;
     s.K = units[k]->model().pattern();
     units[k]->assemble_at(units[k]->w(), Vec9::Zero(), s);
-    const Mat9 R = frame_rotation(spec.frame.at(pts[k].centroid));
+    const Mat9 R = frame_rotation(spec.frame.at(pts[k].X));
     const Eigen::Matrix<double, 9, 12> RB = R * pts[k].B;
     T[k] = Eigen::MatrixXd::Zero(9, nbar);
     for (int a = 0; a < 4; ++a)

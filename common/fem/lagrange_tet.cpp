@@ -1,0 +1,56 @@
+#include "common/fem/lagrange_tet.h"
+
+#include "common/error.h"
+#include "common/mesh/TetMesh.h"
+
+namespace fe2 {
+
+namespace {
+
+// ∂λ_a/∂ξ for ξ = (λ1, λ2, λ3): λ0 = 1 − Σξ.
+Vec3 dlambda_tet(int a) { return a == 0 ? Vec3(-1, -1, -1) : Vec3::Unit(a - 1); }
+Eigen::Vector2d dlambda_tri(int a) { return a == 0 ? Eigen::Vector2d(-1, -1) : Eigen::Vector2d::Unit(a - 1); }
+
+}  // namespace
+
+void tet_shape(int order, const Vec4& l, Eigen::VectorXd& N, Eigen::Matrix<double, 3, Eigen::Dynamic>& dN) {
+  FE2_CHECK(order == 1 || order == 2, "tet order {} (expected 1 or 2)", order);
+  const int n = tet_nodes(order);
+  N.resize(n);
+  dN.resize(3, n);
+  if (order == 1) {
+    for (int a = 0; a < 4; ++a) N[a] = l[a], dN.col(a) = dlambda_tet(a);
+    return;
+  }
+  for (int a = 0; a < 4; ++a) {
+    N[a] = l[a] * (2 * l[a] - 1);
+    dN.col(a) = (4 * l[a] - 1) * dlambda_tet(a);
+  }
+  for (int k = 0; k < 6; ++k) {
+    const auto [a, b] = kTetEdges[k];
+    N[4 + k] = 4 * l[a] * l[b];
+    dN.col(4 + k) = 4 * (l[b] * dlambda_tet(a) + l[a] * dlambda_tet(b));
+  }
+}
+
+void triangle_shape(int order, const Vec3& l, Eigen::VectorXd& N, Eigen::Matrix<double, 2, Eigen::Dynamic>& dN) {
+  FE2_CHECK(order == 1 || order == 2, "triangle order {} (expected 1 or 2)", order);
+  const int n = triangle_nodes(order);
+  N.resize(n);
+  dN.resize(2, n);
+  if (order == 1) {
+    for (int a = 0; a < 3; ++a) N[a] = l[a], dN.col(a) = dlambda_tri(a);
+    return;
+  }
+  for (int a = 0; a < 3; ++a) {
+    N[a] = l[a] * (2 * l[a] - 1);
+    dN.col(a) = (4 * l[a] - 1) * dlambda_tri(a);
+  }
+  for (int k = 0; k < 3; ++k) {  // edges 01, 12, 20
+    const int a = k, b = (k + 1) % 3;
+    N[3 + k] = 4 * l[a] * l[b];
+    dN.col(3 + k) = 4 * (l[b] * dlambda_tri(a) + l[a] * dlambda_tri(b));
+  }
+}
+
+}  // namespace fe2

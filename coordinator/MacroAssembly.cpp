@@ -1,0 +1,45 @@
+#include "coordinator/MacroTerm.h"
+
+namespace fe2 {
+
+MacroAssembly::MacroAssembly(const MacroSystem& system, std::vector<double>& values)
+    : system_(system), values_(values) {
+  clear();
+}
+
+void MacroAssembly::clear() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+  internal_ = Eigen::VectorXd::Zero(system_.num_dofs());
+  external_ = Eigen::VectorXd::Zero(system_.num_dofs());
+  rhs_.assign(system_.num_free(), 0.0);
+}
+
+void MacroAssembly::add_tangent(int block, const Eigen::MatrixXd& K) {
+  system_.add(block, K, values_);
+  if (!lift_) return;
+  const auto& dofs = system_.block_dofs(block);
+  const int n = static_cast<int>(dofs.size());
+  for (int c = 0; c < n; ++c) {
+    const double du = (*lift_)[dofs[c]];
+    if (du == 0.0) continue;
+    for (int r = 0; r < n; ++r)
+      if (system_.eq(dofs[r]) >= 0) rhs_[system_.eq(dofs[r])] -= K(r, c) * du;
+  }
+}
+
+void MacroAssembly::add_internal(const std::vector<int>& dofs, const Eigen::VectorXd& f_true,
+                                 const Eigen::VectorXd& f_newton) {
+  for (size_t k = 0; k < dofs.size(); ++k) {
+    internal_[dofs[k]] += f_true[k];
+    if (system_.eq(dofs[k]) >= 0) rhs_[system_.eq(dofs[k])] -= f_newton[k];
+  }
+}
+
+void MacroAssembly::add_external(const std::vector<int>& dofs, const Eigen::VectorXd& f) {
+  for (size_t k = 0; k < dofs.size(); ++k) {
+    external_[dofs[k]] += f[k];
+    if (system_.eq(dofs[k]) >= 0) rhs_[system_.eq(dofs[k])] += f[k];
+  }
+}
+
+}  // namespace fe2
