@@ -3,7 +3,8 @@
 // Bayer, Blake, Plank, Trayanova, "A novel rule-based algorithm for assigning
 // myocardial fiber orientation to computational heart models", Ann. Biomed. Eng. 40
 // (2012) 2243–2254 (LDRB), on the tet vertices (P1):
-//   ψ: ψ = 0 on `apex`, 1 on `base`                     (apico-basal)
+//   ψ: ψ = 0 on `apex`, 1 on `base`                     (apico-basal; `apex` ""
+//        means the node of `epi` farthest from the centroid of `base`, Bayer's apex)
 //   LV:  φ = 0 on `endo`, 1 on `epi`                     (transmural)
 //   BiV: φ_epi (1 on epi, 0 on both endo), φ_lv (1 on the LV endo, 0 on RV endo and
 //        epi), φ_rv (1 on the RV endo, 0 on LV endo and epi)  (Bayer §2.2)
@@ -23,7 +24,9 @@
 //         symmetry-equivalent of Q_a (±, or turned by π about one of its own axes, which
 //         leaves the fibre, sheet and normal lines unchanged) closest to Q_b.
 // Evaluated inside elements only, so never at the apex point where ∇ψ is singular.
-// Where ∇ψ vanishes or is parallel to ∇φ, l falls back to the mesh's long axis (the
+// Gradients are the element's (constant); where one vanishes (all four vertices on one
+// surface), the recovered nodal gradients interpolated to the point. Where ∇ψ vanishes
+// or is parallel to ∇φ, l falls back to the mesh's long axis (the
 // centroid of `apex` to that of `base`) made orthogonal to t, and failing that to
 // any direction orthogonal to t. A vanishing ∇φ is an InputError naming the element.
 #include "common/fibres/FrameField.h"
@@ -36,7 +39,8 @@ namespace fe2 {
 
 struct RuleFrameOptions {
   double alpha_endo = 60, alpha_epi = -60, beta_endo = 0, beta_epi = 0;  ///< degrees
-  std::string endo = "endo", epi = "epi", base = "base", apex = "apex";  ///< node sets / faces
+  std::string endo = "endo", epi = "epi", base = "base";  ///< named node sets / faces
+  std::string apex;     ///< named node set; "": the `epi` node farthest from the base centroid
   std::string rv_endo;  ///< non-empty: biventricular, with `endo` the LV endocardium
 };
 
@@ -53,20 +57,34 @@ class RuleFrame : public FrameField {
 
   Mat3 at(int e, const Bary& lambda, const Vec3& X) const override;
 
+  /// The rule's axes [c l t] (circumferential, apico-basal, transmural) at a point, from
+  /// ∇ψ and ∇φ (BiV: ∇φ_epi); the helix angle is atan2(f·l, f·c).
+  Mat3 axes(int e, const Bary& lambda) const;
   /// The transmural coordinate at a point: φ (LV) or φ_epi (BiV), in [0, 1].
   double transmural(int e, const Bary& lambda) const;
   bool biventricular() const { return !opt_.rv_endo.empty(); }
 
  private:
+  /// A Laplace solution: nodal values and recovered nodal gradients (volume-weighted
+  /// means of the element gradients around each vertex).
+  struct Field {
+    std::vector<double> u;
+    std::vector<Vec3> g;
+  };
+  Field field(const TetMesh& mesh, std::vector<double> u) const;
+  /// Bayer's axis(∇ψ, g) as [c l t], with t = g/|g| kept exactly.
+  Mat3 axis(int e, const Bary& l, const Vec3& g) const;
   /// Bayer's orient(axis(∇ψ, g), α, β) as [f · s] (a proper rotation).
-  Mat3 oriented(int e, const Vec3& g, double alpha, double beta) const;
-  double value(const std::vector<double>& u, int e, const Bary& l) const;
-  Vec3 gradient(const std::vector<double>& u, int e) const;
+  Mat3 oriented(int e, const Bary& l, const Vec3& g, double alpha, double beta) const;
+  double value(const Field& f, int e, const Bary& l) const;
+  /// The element's gradient; where that vanishes (a tet whose vertices all lie on one
+  /// Dirichlet surface, e.g. a sliver on a thin septum), the interpolated nodal one.
+  Vec3 gradient(const Field& f, int e, const Bary& l) const;
 
   RuleFrameOptions opt_;
   std::vector<std::array<int, 4>> tets_;
   std::vector<std::array<Vec3, 4>> grads_;  ///< ∇λ_a per element
-  std::vector<double> psi_, phi_, phi_lv_, phi_rv_;  ///< per node (phi_ = φ or φ_epi)
+  Field psi_, phi_, phi_lv_, phi_rv_;  ///< phi_: φ (LV) or φ_epi (BiV)
   Vec3 long_axis_ = Vec3::UnitZ();
   double length_ = 1;  ///< the mesh's bounding-box diagonal (scale of gradients)
 };

@@ -42,13 +42,13 @@ void read_rule(SpecNode& f, const TetMesh& mesh, RuleFrameOptions& r) {
   r.endo = f.string("endo", "endo", "named surface of the (LV) endocardium: φ = 0");
   r.epi = f.string("epi", "epi", "named surface of the epicardium: φ = 1");
   r.base = f.string("base", "base", "named surface of the base: ψ = 1");
-  r.apex = f.string("apex", "apex", "named node set (or surface) of the apex: ψ = 0");
+  r.apex = f.string("apex", "", "named node set of the apex: ψ = 0 (\"\": the epi node farthest from the base)");
   r.rv_endo = f.string("rv_endo", "", "named surface of the RV endocardium (biventricular); \"\": LV only");
   std::vector<std::string> names;
   for (const auto& [n, nodes] : mesh.node_sets) names.push_back(n);
   for (const auto& [key, name] : {std::pair<const char*, const std::string&>{"endo", r.endo},
                                   {"epi", r.epi}, {"base", r.base}, {"apex", r.apex}, {"rv_endo", r.rv_endo}}) {
-    if (std::string(key) == "rv_endo" && name.empty()) continue;
+    if ((std::string(key) == "rv_endo" || std::string(key) == "apex") && name.empty()) continue;
     const auto it = mesh.node_sets.find(name);
     if (it != mesh.node_sets.end() && !it->second.empty()) continue;
     const std::string guess = closest_match(name, names);

@@ -5,7 +5,7 @@
 //   rotating: fibre, sheet, axis, coordinate, from, to      (AnalyticFrame.h)
 //   file:     file, format (gmsh | csv), per (element | node), fibre_view, sheet_view
 //   rule:     alpha_endo, alpha_epi, beta_endo, beta_epi (degrees), endo, epi, base,
-//             apex, rv_endo (set: biventricular)              (RuleFrame.h)
+//             apex ("": found), rv_endo (set: biventricular)  (RuleFrame.h)
 #include "common/fibres/AnalyticFrame.h"
 #include "common/fibres/FileFrame.h"
 #include "common/fibres/RuleFrame.h"

@@ -11,6 +11,7 @@
 #include "common/io/vtu_writer.h"
 #include "common/mesh/box_mesh.h"
 #include "common/mesh/gmsh_reader.h"
+#include "common/mesh/lv_mesh.h"
 #include "common/spec/spec_schemas.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <random>
 #include <sstream>
 
@@ -232,6 +235,114 @@ TEST(RuleFrame, BiventricularFramesAreOrthonormalAndMatchBayerOnTheSurfaces) {
       const Vec3 c = lz.cross(t);
       EXPECT_NEAR(std::atan2(Q.col(0).dot(lz), Q.col(0).dot(c)) / kDeg, x0 == 0.0 ? 60.0 : -60.0, 1e-6) << "x = " << x0;
     }
+}
+
+/// A point on each triangle of a named face: (element, λ at the triangle's centroid,
+/// the triangle's outward unit normal).
+struct SurfacePoint {
+  int e;
+  Bary l;
+  Vec3 n;
+};
+std::vector<SurfacePoint> surface_points(const TetMesh& m, const std::string& face) {
+  std::map<std::array<int, 3>, std::pair<int, Bary>> of;
+  for (int e = 0; e < m.num_tets(); ++e)
+    for (int skip = 0; skip < 4; ++skip) {
+      std::array<int, 3> key{};
+      Bary l{};
+      for (int a = 0, k = 0; a < 4; ++a)
+        if (a != skip) {
+          key[k++] = m.tets[e][a];
+          l[a] = 1.0 / 3.0;
+        }
+      std::sort(key.begin(), key.end());
+      of[key] = {e, l};
+    }
+  std::vector<SurfacePoint> out;
+  for (const auto& t : m.faces.at(face)) {
+    std::array<int, 3> key = t;
+    std::sort(key.begin(), key.end());
+    const auto& [e, l] = of.at(key);
+    const Vec3 n = (m.nodes[t[1]] - m.nodes[t[0]]).cross(m.nodes[t[2]] - m.nodes[t[0]]).normalized();
+    out.push_back({e, l, n});
+  }
+  return out;
+}
+
+/// |helix angle − alpha| (degrees; modulo 180: a fibre is a line) of f against axes built
+/// from the geometry: t along `t_geo`, l = e_z made orthogonal to t, c = l × t.
+double geometric_helix_error_deg(const Vec3& f, const Vec3& t_geo, double alpha) {
+  const Vec3 t = t_geo.normalized();
+  const Vec3 l = (Vec3::UnitZ() - Vec3::UnitZ().dot(t) * t).normalized();
+  const double d = std::remainder(std::atan2(f.dot(l), f.dot(l.cross(t))) / kDeg - alpha, 180.0);
+  return std::abs(d);
+}
+
+TEST(RuleFrame, LeftVentricleHelixAngleOnEndoAndEpi) {
+  LvMeshParams p;
+  p.transmural = 3;
+  const TetMesh m = make_lv_mesh(p);
+  const RuleFrame rule(m, RuleFrameOptions{});  // defaults: endo, epi, base; apex found
+  double worst_geo = 0;
+  for (const auto& [face, alpha, sign] : {std::tuple{"endo", 60.0, -1.0}, std::tuple{"epi", -60.0, 1.0}}) {
+    const auto pts = surface_points(m, face);
+    ASSERT_GT(pts.size(), 100u);
+    for (const auto& [e, l, n] : pts) {
+      const Mat3 Q = rule.at(e, l, Vec3());
+      const Mat3 A = rule.axes(e, l);  // the rule's own [c l t]
+      EXPECT_NEAR(std::atan2(Q.col(0).dot(A.col(1)), Q.col(0).dot(A.col(0))) / kDeg, alpha, 1e-6) << face << " " << e;
+      EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12);
+      EXPECT_NEAR((Q.col(1) - A.col(2)).norm(), 0.0, 1e-12) << "sheet transmural";
+      EXPECT_EQ(rule.transmural(e, l), face == std::string("endo") ? 0.0 : 1.0);
+      // Against the geometry (t = the wall's normal towards the epicardium): the P1
+      // gradient of φ is close to, not exactly along, the surface normal.
+      const double err = geometric_helix_error_deg(Q.col(0), sign * n, alpha);
+      ASSERT_TRUE(std::isfinite(err));
+      worst_geo = std::max(worst_geo, err);
+      EXPECT_GT(Q.col(1).dot(sign * n), 0.9) << face << " " << e;
+    }
+  }
+  // The generator's mesh is symmetric enough that ∇ψ lies in the meridional plane.
+  EXPECT_LT(worst_geo, 0.5);
+  std::printf("LV (%d tets): worst helix angle against the surface normals %.3g°\n", m.num_tets(), worst_geo);
+}
+
+TEST(RuleFrame, BiventricularMeshHelixAngleOnLvRvEndoAndEpi) {
+  const TetMesh m = read_gmsh_tets(std::string(FE2_SOURCE_DIR) + "/configs/meshes/biv_coarse.msh");
+  RuleFrameOptions o;
+  o.endo = "lv_endo";
+  o.rv_endo = "rv_endo";
+  const RuleFrame rule(m, o);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const Mat3 Q = rule.at(e, kCentroid, Vec3());
+    EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12) << e;
+    EXPECT_NEAR(Q.determinant(), 1.0, 1e-12) << e;
+  }
+  // Epi: Bayer gives Q_epi = orient(axis(∇ψ, ∇φ_epi), α_epi), exactly. LV and RV endo:
+  // the right-handed endocardial helix +α_endo with t pointing into the wall (the RV's
+  // rule −α_endo about ∇φ_rv, which points out of the wall, is the same fibre line).
+  std::vector<double> errors;
+  for (const auto& [face, alpha] : {std::pair{"lv_endo", 60.0}, std::pair{"rv_endo", 60.0}, std::pair{"epi", -60.0}}) {
+    for (const auto& [e, l, n] : surface_points(m, face)) {
+      const Mat3 Q = rule.at(e, l, Vec3());
+      if (face == std::string("epi")) {
+        const Mat3 A = rule.axes(e, l);
+        EXPECT_NEAR(std::atan2(Q.col(0).dot(A.col(1)), Q.col(0).dot(A.col(0))) / kDeg, alpha, 1e-6) << e;
+        EXPECT_EQ(rule.transmural(e, l), 1.0);
+      }
+      const Vec3 into_wall_to_epi = face == std::string("epi") ? n : Vec3(-n);
+      errors.push_back(geometric_helix_error_deg(Q.col(0), into_wall_to_epi, alpha));
+    }
+    std::sort(errors.begin(), errors.end());
+    ASSERT_TRUE(std::isfinite(errors.back()));
+    // Against e_z as the long axis (∇ψ from the apex point tilts around the RV): most
+    // points within 20°, none a reversed helix (120° off).
+    EXPECT_LT(errors[errors.size() * 9 / 10], 20.0) << face;
+    EXPECT_LT(errors.back(), 60.0) << face;
+    std::printf("BiV %s: helix angle against the surface normals: median error %.2f°, 90th percentile %.2f°, max %.2f° (%zu points)\n",
+                face, errors[errors.size() / 2], errors[errors.size() * 9 / 10], errors.back(), errors.size());
+    errors.clear();
+  }
 }
 
 // -------------------------------------------------------------------------------------
