@@ -53,7 +53,7 @@ std::vector<Entry> read_csv(const std::string& file) {
     first = false;
     if (header) continue;
     const bool numbers = std::find(ok.begin(), ok.end(), false) == ok.end();
-    if (!numbers || v.size() != 7 || v[0] != std::floor(v[0]) || v[0] < 1)
+    if (!numbers || v.size() != 7 || v[0] != std::floor(v[0]) || v[0] < 1 || v[0] > 9e15)
       throw InputError(fmt::format("fibre file '{}' line {}: got '{}', expected 7 comma-separated numbers "
                                    "tag,fx,fy,fz,sx,sy,sz (tag a positive integer)",
                                    file, n, line.substr(0, 80)));
