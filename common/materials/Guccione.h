@@ -1,28 +1,26 @@
 #pragma once
 // Guccione's transversely isotropic exponential law for passive myocardium
 // (Guccione, McCulloch & Waldman 1991), in the material frame of the unit
-// (axis 1 = fibre f, 2 = sheet s, 3 = sheet-normal n), with a volumetric penalty:
+// (axis 1 = fibre f, 2 = sheet s, 3 = sheet-normal n), with a volumetric part U:
 //
-//   W = C/2 (e^Q − 1) + U(J),     U(J) = κ/2 (J − 1)²
+//   W = C/2 (e^Q − 1) + U(J)
 //   Q = b_f E11² + b_t (E22² + E33² + 2 E23²) + b_fs (2 E12² + 2 E13²)
 //
-// U = κ/2 (J − 1)² rather than κ/2 (ln J)²: U'' = κ is constant, so U is convex for
-// every J > 0 (κ/2 (ln J)² is convex only for J < e). The price is that U stays
-// bounded as J → 0, so inversion is caught by the det F check, not by the energy.
-// There is no isochoric/volumetric split: Q uses the full E, as in Guccione's paper.
+// U (volumetric.h) is the penalty κ/2 (J − 1)² by default, or absent
+// (`"volumetric": "none"`) when the macro mixed formulation's pressure field enforces
+// J̄ = 1: then W is exactly the first term, Guccione's incompressible law. Q uses the
+// full E in both cases, as in Guccione's paper (no isochoric Ē).
 //
 // Writing Q = Σ_IJ b_IJ E_IJ² (all nine components; b_11 = b_f, b_22 = b_33 = b_23 =
 // b_t, b_12 = b_13 = b_fs, symmetric), with a_IJ = b_IJ E_IJ (no sum):
 //
-//   S_iso = C e^Q a                           S_vol = U'J C⁻¹
-//   ℂ_iso = C e^Q (b_IJ 𝕀_IJKL + 2 a_IJ a_KL)
-//   ℂ_vol = (U'J + U''J²) C⁻¹⊗C⁻¹ − 2U'J 𝕀_{C⁻¹},
-//   𝕀_{C⁻¹,IJKL} = ½(C⁻¹_IK C⁻¹_JL + C⁻¹_IL C⁻¹_JK),   U' = κ(J − 1), U'' = κ.
+//   S_Q = C e^Q a,   ℂ_Q = C e^Q (b_IJ 𝕀_IJKL + 2 a_IJ a_KL),   plus S_vol, ℂ_vol.
 //
 // Π and 𝔸 by push_forward (hyperelastic_push.h). Parameters in Pa (C, κ) and
 // dimensionless (b). A strain so large that e^Q overflows is a NumericalError.
 #include "common/materials/Material.h"
 #include "common/materials/hyperelastic_push.h"
+#include "common/materials/volumetric.h"
 
 namespace fe2 {
 
@@ -32,20 +30,21 @@ struct GuccioneParameters {
   double bt = 3.58;      ///< transverse exponent b_t
   double bfs = 1.63;     ///< fibre–sheet/normal shear exponent b_fs
   double kappa = 1.0e5;  ///< Pa; volumetric penalty, ~100 C: nearly incompressible
+  Volumetric volumetric = Volumetric::penalty;  ///< none: κ is unused
 };
 
 class Guccione final : public Material {
  public:
   static constexpr const char* kName = "guccione";
 
-  /// Every parameter must be > 0 (InputError otherwise).
+  /// Every parameter must be > 0 (κ only with the penalty; InputError otherwise).
   explicit Guccione(const GuccioneParameters& p);
 
   std::string name() const override { return kName; }
   double energy(const Vec9& Z) const override;
   void stress_and_tangent(const Vec9& Z, Vec9& Pi, Mat9& A) const override;
   /// C·max(b_f, b_t, b_fs) + κ: the stiffest small-strain entry, ℂ_1111 ≈ C b_f + κ
-  /// at E = 0 for the usual b_f > b_t, b_fs.
+  /// at E = 0 for the usual b_f > b_t, b_fs (without κ when volumetric is none).
   double stiffness_scale() const override;
 
   const GuccioneParameters& parameters() const { return p_; }

@@ -30,6 +30,21 @@ constexpr int voigt6(int I, int J) { return kVoigt6[I][J]; }
 constexpr int voigt6_row(int a) { return kVoigt6Row[a]; }
 constexpr int voigt6_col(int a) { return kVoigt6Col[a]; }
 
+/// Voigt vector of the tensor components of a symmetric 3x3 matrix.
+inline Vec6 to_voigt(const Mat3& M) {
+  Vec6 v;
+  for (int a = 0; a < 6; ++a) v(a) = M(voigt6_row(a), voigt6_col(a));
+  return v;
+}
+
+/// Symmetric 3x3 matrix of a Voigt vector of tensor components.
+inline Mat3 from_voigt(const Vec6& v) {
+  Mat3 M;
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J) M(I, J) = v(voigt6(I, J));
+  return M;
+}
+
 /// Π = F S and 𝔸_iJkL = δ_ik S_JL + F_iI F_kK ℂ_IJKL (see the header comment).
 /// Contracts in two stages, T_iJ,KL = F_iI ℂ_IJKL (162 multiplies) and then
 /// 𝔸_iJkL = F_kK T_iJ,KL (243 multiplies), all on the stack: it runs once per

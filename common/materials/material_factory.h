@@ -2,6 +2,7 @@
 // Builds a Material from its spec object, e.g.
 //   {"model": "neo_hookean", "E": 10000, "nu": 0.3}
 //   {"model": "guccione", "C": 880, "bf": 18.5, "bt": 3.58, "bfs": 1.63, "kappa": 1e5}
+//   {"model": "holzapfel_ogden", "isotropic": "full", "volumetric": "none"}
 // Every key is declared on the SpecNode (and checked against the <material> schema in
 // common/spec/spec_schemas.cpp) and the node is finished, so unknown keys and
 // out-of-range values are InputErrors naming the key.

@@ -2,9 +2,11 @@
 // finite strain, major symmetry, the small-strain limit, inverted points, frame
 // objectivity, and the spec factory's error messages.
 #include "common/materials/Guccione.h"
+#include "common/materials/HolzapfelOgden.h"
 #include "common/materials/NeoHookean.h"
 #include "common/materials/StVenantKirchhoff.h"
 #include "common/materials/material_factory.h"
+#include "tests/common/material_finite_differences.h"
 
 #include <gtest/gtest.h>
 
@@ -31,29 +33,8 @@ Vec9 sample_Z(unsigned seed, double amplitude) {
   }
 }
 
-/// Central differences of W: Π_a ≈ (W(Z + h e_a) − W(Z − h e_a)) / 2h.
-Vec9 fd_stress(const Material& m, const Vec9& Z, double h) {
-  Vec9 Pi;
-  for (int a = 0; a < 9; ++a) {
-    Vec9 Zp = Z, Zm = Z;
-    Zp(a) += h;
-    Zm(a) -= h;
-    Pi(a) = (m.energy(Zp) - m.energy(Zm)) / (2 * h);
-  }
-  return Pi;
-}
-
-/// Central differences of Π: column b of 𝔸 ≈ (Π(Z + h e_b) − Π(Z − h e_b)) / 2h.
-Mat9 fd_tangent(const Material& m, const Vec9& Z, double h) {
-  Mat9 A;
-  for (int b = 0; b < 9; ++b) {
-    Vec9 Zp = Z, Zm = Z;
-    Zp(b) += h;
-    Zm(b) -= h;
-    A.col(b) = (m.stress(Zp) - m.stress(Zm)) / (2 * h);
-  }
-  return A;
-}
+using testing::fd_stress;
+using testing::fd_tangent;
 
 /// λ δ_iJ δ_kL + μ(δ_ik δ_JL + δ_iL δ_Jk), the isotropic small-strain tensor.
 Mat9 isotropic_linear_tangent(double lambda, double mu) {
@@ -88,6 +69,21 @@ const LawCase kLaws[] = {
     // Land et al. 2015 benchmark exponents: shear stiffer than the transverse direction.
     {"guccione_land",
      [] { return std::make_shared<Guccione>(GuccioneParameters{2000, 8, 2, 4, 5e4}); }},
+    {"guccione_no_volumetric",
+     [] {
+       GuccioneParameters p;
+       p.volumetric = Volumetric::none;
+       return std::make_shared<Guccione>(p);
+     }},
+    // Full-invariant HO is left out: its reference stress is a I by design
+    // (test_holzapfel_ogden.cpp checks that and its derivatives).
+    {"holzapfel_ogden", [] { return std::make_shared<HolzapfelOgden>(HolzapfelOgdenParameters{}); }},
+    {"holzapfel_ogden_no_volumetric",
+     [] {
+       HolzapfelOgdenParameters p;
+       p.volumetric = Volumetric::none;
+       return std::make_shared<HolzapfelOgden>(p);
+     }},
 };
 
 /// (seed, amplitude) of the finite strains every law is checked at.
@@ -251,6 +247,7 @@ TEST(MaterialFactory, BuildsEveryModel) {
       {{"model", "neo_hookean"}, {"E", 1.0e4}, {"nu", 0.3}},
       {{"model", "st_venant_kirchhoff"}, {"E", 1.0e4}, {"nu", 0.3}},
       {{"model", "guccione"}},
+      {{"model", "holzapfel_ogden"}},
   };
   ASSERT_EQ(material_models().size(), std::size(specs));
   for (const json& spec : specs) {

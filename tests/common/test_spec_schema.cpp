@@ -134,6 +134,9 @@ TEST(SpecSchema, SpecDocListsEveryBranchWithIntegersAsIntegers) {
   expect("<material>/bfs",
          "number > 0 (default 1.63), when model = \"guccione\": fibre-shear exponent b_fs");
   expect("<material>/E", "number > 0 (required), when model = \"neo_hookean\": Young's modulus (Pa)");
+  expect("<material>/af",
+         "number >= 0 (default 18472), when model = \"holzapfel_ogden\": fibre modulus a_f (Pa), "
+         "acts in fibre tension only");
   EXPECT_NE(line_of(doc, "/farm/stall_timeout").find("number > 0 (default 600)"), std::string::npos);
   expect("/probes/<name>", "array of 3 numbers (required): reference position");
   // Each shared definition is printed once, saying where it is used.
@@ -172,8 +175,11 @@ TEST(SpecSchema, JsonSchemaHasTypesRangesAndOneBranchPerKind) {
   EXPECT_EQ(beta["maximum"], 0.5);
   // Shared definitions: the material has one branch per model, guccione with its keys.
   const json& material = s["$defs"]["material"];
-  ASSERT_EQ(material["oneOf"].size(), 3u);
+  ASSERT_EQ(material["oneOf"].size(), 4u);
   EXPECT_EQ(material["oneOf"][2]["properties"]["kappa"]["default"], 1e5);
+  EXPECT_EQ(material["oneOf"][3]["properties"]["isotropic"]["default"], "isochoric");
+  EXPECT_EQ(material["oneOf"][3]["properties"]["af"]["minimum"], 0.0);
+  EXPECT_EQ(material["oneOf"][3]["properties"]["volumetric"]["enum"], json({"penalty", "none"}));
   EXPECT_EQ(s["$defs"]["unit"]["oneOf"].size(), 4u);
   const json unit = to_json_schema(unit_spec_schema(), "urn:test", "unit");
   EXPECT_EQ(unit["oneOf"], json({{{"required", {"Zbar"}}}, {{"required", {"Zbar_path"}}}}));
