@@ -74,13 +74,13 @@ TEST(SpecSchema, TheDiscriminatorPicksTheBranch) {
   const json gmsh = {{"mesh", {{"kind", "gmsh"}, {"file", "heart.msh"}}}};
   SpecNode root(gmsh, "", nullptr, &run_spec_schema());
   SpecNode m = root.child("mesh", true, "mesh");
-  m.choice("kind", "box", {"box", "gmsh"}, "kind");
+  m.choice("kind", "box", {"box", "gmsh", "lv"}, "kind");
   EXPECT_EQ(m.string("file", std::nullopt, "file"), "heart.msh");
   // Without "kind" the mesh is a box (the default branch), which has no file.
   const json box = {{"mesh", {{"hi", {1, 1, 1}}}}};
   SpecNode root2(box, "", nullptr, &run_spec_schema());
   SpecNode m2 = root2.child("mesh", true, "mesh");
-  m2.choice("kind", "box", {"box", "gmsh"}, "kind");
+  m2.choice("kind", "box", {"box", "gmsh", "lv"}, "kind");
   const std::string msg = internal_error([&] { m2.string("file", std::nullopt, "file"); });
   EXPECT_NE(msg.find("disagree on /mesh/file"), std::string::npos) << msg;
   EXPECT_EQ(m2.numbers("hi", 3, std::nullopt, "upper corner"), (std::vector<double>{1, 1, 1}));
@@ -153,7 +153,7 @@ TEST(SpecSchema, JsonSchemaHasTypesRangesAndOneBranchPerKind) {
   EXPECT_EQ(s["additionalProperties"], false);
   EXPECT_EQ(s["required"], json({"mesh", "models", "dirichlet"}));
   const json& mesh = s["properties"]["mesh"];
-  ASSERT_EQ(mesh["oneOf"].size(), 2u);
+  ASSERT_EQ(mesh["oneOf"].size(), 3u);  // box, gmsh, lv
   const json& box = mesh["oneOf"][0];
   EXPECT_EQ(box["properties"]["kind"]["const"], "box");
   EXPECT_EQ(box["required"], json({"hi", "divisions"}));  // kind may be omitted: box is the default
