@@ -2,10 +2,15 @@
 
 namespace fe2 {
 
-void hex_contribution(const HexGeometry& geo, double inv_volume,
-                      const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
-                      const Material& material, bool need_G, HexContribution& out,
-                      const HexPointContext* point) {
+namespace {
+
+/// The kernel, compiled once per path so the stateless one (kContext = false) is the
+/// plain loop without a branch per Gauss point.
+template <bool kContext>
+void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
+                           const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
+                           const Material& material, bool need_G, HexContribution& out,
+                           const HexPointContext* point) {
   out.K.setZero();
   out.r.setZero();
   out.H.setZero();
@@ -24,7 +29,7 @@ void hex_contribution(const HexGeometry& geo, double inv_volume,
 
     // Z = Z̄ + B̃w: Z_iJ = Z̄_iJ + Σ_a w_ai ∂N_a/∂X_J
     Mat3 Z = as_mat3(Zbar) + w_e * g.transpose();
-    if (point) {
+    if constexpr (kContext) {
       MaterialPointContext context{point->time, point->dt, Vec9::Zero()};
       // Ż = Ż̄ + B̃ẇ: Ż_iJ = Ż̄_iJ + Σ_a ẇ_ai ∂N_a/∂X_J
       Eigen::Map<Mat3>(context.Zdot.data()) = as_mat3(point->Zbar_dot) + point->w_dot_e * g.transpose();
@@ -76,6 +81,18 @@ void hex_contribution(const HexGeometry& geo, double inv_volume,
     for (int i = 0; i < 3; ++i)
       for (int k = i + 1; k < 3; ++k)
         out.K.block<8, 8>(8 * k, 8 * i) = out.K.block<8, 8>(8 * i, 8 * k).transpose();
+}
+
+}  // namespace
+
+void hex_contribution(const HexGeometry& geo, double inv_volume,
+                      const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
+                      const Material& material, bool need_G, HexContribution& out,
+                      const HexPointContext* point) {
+  if (point)
+    hex_contribution_impl<true>(geo, inv_volume, w_e, Zbar, material, need_G, out, point);
+  else
+    hex_contribution_impl<false>(geo, inv_volume, w_e, Zbar, material, need_G, out, nullptr);
 }
 
 }  // namespace fe2
