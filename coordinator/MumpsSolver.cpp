@@ -2,6 +2,8 @@
 
 #include "common/error.h"
 
+#include <spdlog/spdlog.h>
+
 #include <exception>
 
 namespace fe2 {
@@ -62,6 +64,14 @@ void MumpsSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
   id_.a_loc = a_.data();
   run(1, "analysis");
   analysed_ = true;
+  // The ordering MUMPS actually used (INFOG(7)) can differ from the one asked for
+  // (ICNTL(7) = 7: automatic) — with a saddle-point block it matters (DESIGN §6).
+  static const char* const names[] = {"AMD", "user", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
+  const int used = id_.INFOG(7);
+  ordering_ = used >= 0 && used <= 6 ? names[used] : fmt::format("code {}", used);
+  spdlog::info("MUMPS analysis: {} equations, {} triplets on this rank, ordering {} (INFOG(7) = {}), "
+               "unsymmetric LU with pivoting",
+               n_, irn_.size(), ordering_, used);
 }
 
 void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs) {

@@ -40,6 +40,8 @@ class MumpsSolver {
   void factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs);
 
   int size() const { return n_; }
+  /// The fill-reducing ordering the analysis used (INFOG(7)), e.g. "METIS".
+  const std::string& ordering() const { return ordering_; }
 
  private:
   void run(int job, const char* what);
@@ -48,6 +50,7 @@ class MumpsSolver {
   std::vector<int> irn_, jcn_;
   std::vector<double> a_;
   bool analysed_ = false;
+  std::string ordering_;
 };
 
 }  // namespace fe2

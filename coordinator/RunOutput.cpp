@@ -1,5 +1,7 @@
 #include "coordinator/RunOutput.h"
 
+#include "common/mesh/cavity_volume.h"
+
 #include "common/io/atomic_file.h"
 
 #include <algorithm>
@@ -64,6 +66,9 @@ RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
                                    name, ec.message()));
   }
   write_file_atomically(dir_ + "/spec.json", spec.raw.dump(2) + "\n");
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(3 * spec.mesh.num_nodes());
+  for (const auto& [name, surface] : spec.cavities)
+    reference_volumes_.push_back(cavity_volume(spec.mesh, surface, zero).volume);
   if (spec.write_vtu) pvd_ = std::make_unique<PvdWriter>(pvd_path());
   // Before the first step: the summary of a run killed during it says so.
   json s;
@@ -164,11 +169,32 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                     {"gmres_iterations", h.gmres_iterations},
                     {"refreshes", h.refreshes},
                     {"wall_seconds", h.wall_seconds}});
+    if (!h.cavity_volumes.empty()) {
+      json cav = json::object();
+      for (size_t c = 0; c < h.cavity_volumes.size(); ++c) cav[sim.spec().cavities[c].first] = h.cavity_volumes[c];
+      hist.back()["cavity_volumes"] = cav;
+    }
+    if (!h.load_pressures.empty()) hist.back()["load_pressures"] = h.load_pressures;
     gmres += h.gmres_iterations;
     refreshes += h.refreshes;
     micro_cpu += h.micro_cpu_seconds;
   }
   s["history"] = hist;
+  // Per cavity: its surface, the pressure loads on it (the pressure–volume curve of
+  // history[*].load_pressures against history[*].cavity_volumes), reference and current volume.
+  json cavities = json::object();
+  const auto& spec = sim.spec();
+  const std::vector<double> now = sim.cavity_volumes();
+  for (size_t c = 0; c < spec.cavities.size(); ++c) {
+    json loads = json::array();
+    for (size_t p = 0; p < spec.pressure.size(); ++p)
+      if (spec.pressure[p].surface == spec.cavities[c].second) loads.push_back(p);
+    cavities[spec.cavities[c].first] = {{"surface", spec.cavities[c].second},
+                                        {"pressure_loads", loads},
+                                        {"reference_volume", reference_volumes_[c]},
+                                        {"volume", now[c]}};
+  }
+  if (!spec.cavities.empty()) s["cavities"] = cavities;
   s["gmres_iterations"] = gmres;
   s["refreshes"] = refreshes;
   s["micro_cpu_seconds"] = micro_cpu;
@@ -177,6 +203,8 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["elements"] = sim.spec().mesh.num_tets();
   s["element_order"] = sim.spec().mesh.order();
   s["formulation"] = sim.spec().formulation.mixed ? "mixed" : "displacement";
+  s["macro_unknowns"] = sim.system().num_free();
+  s["macro_ordering"] = sim.macro_ordering();
   if (pvd_) s["fields"] = fs::path(pvd_path()).filename().string();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }

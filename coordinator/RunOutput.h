@@ -56,6 +56,7 @@ class RunOutput {
   std::string dir_;
   std::unique_ptr<PvdWriter> pvd_;
   RunResult progress_;  ///< the steps so far, for write_progress
+  std::vector<double> reference_volumes_;  ///< per spec.cavities, undeformed
 };
 
 }  // namespace fe2

@@ -329,6 +329,23 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
                                 "step halvings before giving up");
   n.finish();
 
+  SpecNode cavities = root.child("cavities", false, "cavities whose deformed volume is reported every step");
+  for (auto it = cavities.raw().begin(); it != cavities.raw().end(); ++it) {
+    SpecNode c = cavities.child(it.key(), true, "a cavity");
+    const std::string surface =
+        c.string("surface", std::nullopt,
+                 "the named face that bounds it (endocardium, normals out of the solid); the open "
+                 "base is closed by a fan from its rim's centroid");
+    if (!spec.mesh.faces.count(surface)) {
+      std::vector<std::string> known;
+      for (const auto& [n, _] : spec.mesh.faces) known.push_back(n);
+      c.fail("surface", "a named surface of the mesh (" + fmt::format("{}", fmt::join(known, ", ")) + ")");
+    }
+    c.finish();
+    spec.cavities.emplace_back(it.key(), surface);
+  }
+  cavities.finish();
+
   SpecNode probes = root.child("probes", false, "named material points to report");
   for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {
     const std::string name = it.key();

@@ -98,6 +98,7 @@ struct RunSpec {
   uint64_t hash = 0;              ///< of the spec's canonical text (ranks compare it)
 
   std::vector<std::pair<std::string, Vec3>> probes;
+  std::vector<std::pair<std::string, std::string>> cavities;  ///< (name, bounding face)
   int output_every = 1;
   bool write_vtu = true;
 

@@ -2,6 +2,7 @@
 
 #include "common/cpu_timer.h"
 #include "common/fem/lagrange_tet.h"
+#include "common/mesh/cavity_volume.h"
 #include "common/mesh/point_locator.h"
 
 #include <spdlog/spdlog.h>
@@ -46,11 +47,14 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
             spec.points_per_element);
   if (system_.num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
+  // The material frame at every point (a rule-based field solves its Laplace problems here).
+  const auto field = make_frame_field(spec.frame.field, spec.mesh);
   const int np = points_.size();
   Q_.resize(np);
   R_.resize(np);
   for (int k = 0; k < np; ++k) {
-    Q_[k] = spec.frame.at(points_[k].X);
+    const Vec4& l = points_[k].bary;
+    Q_[k] = field->at(points_[k].element, Bary{l[0], l[1], l[2], l[3]}, points_[k].X);
     R_[k] = frame_rotation(Q_[k]);
   }
   for (int k : owned_points_)
@@ -96,6 +100,13 @@ Vec3 Simulation::deformed_position(const Vec3& X) const {
   Vec3 x = X;
   for (size_t a = 0; a < nodes.size(); ++a) x += N[a] * x_.segment<3>(3 * nodes[a]);
   return x;
+}
+
+std::vector<double> Simulation::cavity_volumes() const {
+  std::vector<double> v;
+  const Eigen::VectorXd u = displacement();
+  for (const auto& [name, surface] : spec_.cavities) v.push_back(cavity_volume(spec_.mesh, surface, u).volume);
+  return v;
 }
 
 std::vector<double> Simulation::nodal_pressure() const {
@@ -420,6 +431,8 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
                    dt_nominal / std::ldexp(1.0, cut));
     }
     rec.time = t_n_;
+    rec.cavity_volumes = cavity_volumes();
+    for (const auto& ps : spec_.pressure) rec.load_pressures.push_back(ps.value * ramp_factor(ps.ramp, t_n_, spec_.t_end));
     rec.wall_seconds = wall_seconds() - t0;
     result.newton_iterations += rec.iterations;
     result.steps = step + 1;

@@ -41,6 +41,8 @@ struct StepRecord {
   int refreshes = 0;
   double wall_seconds = 0.0;
   double micro_cpu_seconds = 0.0;
+  std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
+  std::vector<double> load_pressures;   ///< per spec.pressure, at the end of the step
 };
 
 struct RunResult {
@@ -75,6 +77,8 @@ class Simulation {
 
   const RunSpec& spec() const { return spec_; }
   const MacroSystem& system() const { return system_; }
+  /// The fill-reducing ordering MUMPS chose for S̄ ("" before the first solve).
+  const std::string& macro_ordering() const { return mumps_.ordering(); }
   const MacroPoints& points() const { return points_; }
   /// Every DOF: ū (node-major) then p.
   const Eigen::VectorXd& state() const { return x_; }
@@ -89,6 +93,8 @@ class Simulation {
   const Mat3& frame(int point) const { return Q_[point]; }
   /// Z̄ at point k of the current ū.
   Vec9 displacement_gradient(int point) const;
+  /// Deformed volume of each cavity of the spec (in its order) at the current ū.
+  std::vector<double> cavity_volumes() const;
   /// Deformed position of a reference point inside the mesh.
   Vec3 deformed_position(const Vec3& X) const;
 

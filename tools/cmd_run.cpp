@@ -30,7 +30,7 @@ std::string describe(const RunSpec& spec) {
   }
   const bool mixed = spec.formulation.mixed;
   const int order = spec.mesh.order();
-  return fmt::format("{} nodes, {} {}-node tetrahedra, {} ({} points: {} per element; {} FE² units, "
+  return fmt::format("{} nodes, {} tetrahedra ({}-node), {} ({} points: {} per element; {} FE² units, "
                      "{} micro DOF in all), {} steps{}",
                      spec.mesh.num_nodes(), spec.mesh.num_tets(), order == 1 ? 4 : 10,
                      !mixed ? fmt::format("displacement P{}", order)
@@ -251,6 +251,12 @@ int run(const RunOptions& o) {
         });
     if (rank == 0) points.shutdown();
     if (output) output->write_summary(sim, result, wall_seconds() - t0);
+    if (output && !spec.cavities.empty()) {
+      // The pressure–volume curve as a picture; a missing matplotlib costs only the PNG.
+      const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_PLOT_SCRIPT, o.out);
+      if (std::system(cmd.c_str()) != 0)
+        spdlog::warn("no pv_curve.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+    }
     if (!result.converged) {
       spdlog::error("run stopped: {}", result.error);
       spdlog::info("partial results in {}", o.out);

@@ -288,6 +288,12 @@ Schema make_run_spec_schema() {
                 {"rtol", number(1e-8, kOpenUnit, "macro residual / max(‖f_int‖, ‖f_ext‖)")},
                 {"micro_rtol", number(1e-8, kOpenUnit, "unit residual ‖r‖ / r_ref")},
                 {"max_cutbacks", integer(4, Range::closed(0, 30), "step halvings before giving up")}})},
+       {"cavities",
+        map(false, "cavities whose deformed volume is reported every step", "name",
+            object(true, "a cavity",
+                   {{"surface", string(nullopt, "the named face that bounds it (endocardium, "
+                                                "normals out of the solid); the open base is "
+                                                "closed by a fan from its rim's centroid")}}))},
        {"probes", map(false, "named material points to report", "name",
                       numbers(3, nullopt, "reference position"))},
        {"farm",

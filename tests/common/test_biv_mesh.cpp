@@ -1,6 +1,7 @@
 // The shipped idealized biventricular mesh (configs/meshes/biv_coarse.msh, made by
 // `tools/meshes/biv_mesh.py configs/meshes/biv_coarse.msh --size 2.5 --order 2`) reads with the repo's Gmsh reader, has the named surfaces,
 // and its wall and cavity volumes agree with the ellipsoids it was built from.
+#include "common/fem/lagrange_tet.h"
 #include "common/mesh/cavity_volume.h"
 #include "common/mesh/gmsh_reader.h"
 
@@ -75,6 +76,25 @@ TEST(BivMesh, ShippedMeshReadsWithNamedSurfacesAndSaneVolumes) {
   EXPECT_NEAR(lv / ref_lv, 1.0, 0.003);
   EXPECT_NEAR(rv / ref_rv, 1.0, 0.005);
   EXPECT_NEAR(wall / ref_wall, 1.0, 0.02);
+
+  // Curved (quadratic) elements must not fold: det J > 0 at every point the solver
+  // integrates at (the 4 unit points, and the degree-4 rule of mass and pressure terms).
+  // Without Gmsh's high-order untangling a septal element did (det J = −1.2).
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+  double worst = 1e300;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const auto nodes = m.element_nodes(e);
+    for (int degree : {2, 4})
+      for (const auto& q : tet_rule(degree)) {
+        tet_shape(2, q.bary, N, dN);
+        Mat3 J = Mat3::Zero();
+        for (size_t a = 0; a < nodes.size(); ++a) J += m.nodes[nodes[a]] * dN.col(a).transpose();
+        worst = std::min(worst, J.determinant() / (6.0 * tet_signed_volume(m, e)));
+      }
+  }
+  std::printf("biv_coarse: smallest det J / straight-sided det J at a quadrature point: %.3f\n", worst);
+  EXPECT_GT(worst, 0.05);
 }
 
 }  // namespace

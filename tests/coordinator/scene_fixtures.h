@@ -43,7 +43,7 @@ inline json beam(const json& model, int steps = 3, double pressure = 60.0) {
 
 struct SceneRun {
   RunResult result;
-  Eigen::VectorXd u;
+  Eigen::VectorXd u;  ///< every macro DOF: ū, then p (mixed)
   std::vector<Vec3> probes;
 };
 
@@ -53,7 +53,7 @@ inline SceneRun run_scene(const json& j) {
   Simulation sim(spec, points);
   SceneRun r;
   r.result = sim.run();
-  r.u = sim.displacement();
+  r.u = sim.state();
   for (const auto& [name, X] : spec.probes) r.probes.push_back(sim.deformed_position(X));
   return r;
 }

@@ -1,0 +1,83 @@
+// Issue #8: the LV (truncated ellipsoid of Land et al. 2015) inflated with the
+// Lagrange-multiplier Taylor–Hood form keeps J̄ = 1 at every point, and the cavity grows.
+#include "common/mesh/cavity_volume.h"
+#include "tests/coordinator/scene_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace fe2 {
+namespace {
+
+json lv_scene(const json& formulation, const json& material, double pressure) {
+  return {{"mesh", {{"kind", "lv"}, {"divisions", {16, 8, 2}}, {"order", 2}}},
+          {"frame", {{"kind", "rule"}}},
+          {"formulation", formulation},
+          {"models", {{"wall", {{"kind", "macro_law"}, {"material", material}}}}},
+          {"dirichlet", {{{"set", "base"}}}},
+          {"pressure", {{{"surface", "endo"}, {"value", pressure}}}},
+          {"cavities", {{"lv", {{"surface", "endo"}}}}},
+          {"time", {{"steps", 4}}},
+          {"newton", {{"rtol", 1e-10}, {"max_iterations", 25}}},
+          {"output", {{"vtu", false}}}};
+}
+
+struct Inflation {
+  double cavity_growth = 0, wall_volume_change = 0, mean_J_error = 0, worst_element_J_error = 0;
+  bool volumes_increase = true;
+};
+
+Inflation inflate(int circumferential, int longitudinal, int transmural) {
+  // Holzapfel–Ogden without a volumetric energy: only the pressure field holds J̄ = 1.
+  const json ho = {{"model", "holzapfel_ogden"}, {"volumetric", "none"}};
+  json j = lv_scene({{"kind", "mixed"}}, ho, 1500.0);
+  j["mesh"]["divisions"] = {circumferential, longitudinal, transmural};
+  const RunSpec spec = read_run_spec(j, "");
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.converged) << r.error;
+  Inflation out;
+  double V = 0, v = 0, err = 0;
+  for (int e = 0; e < spec.mesh.num_tets(); ++e) {
+    double Ve = 0, ve = 0;
+    for (int k = sim.points().first_point(e); k < sim.points().first_point(e + 1); ++k) {
+      const double J = (Mat3::Identity() + as_mat3(sim.displacement_gradient(k))).determinant();
+      Ve += sim.points()[k].volume;
+      ve += sim.points()[k].volume * J;
+      err += sim.points()[k].volume * std::abs(J - 1);
+    }
+    V += Ve, v += ve;
+    out.worst_element_J_error = std::max(out.worst_element_J_error, std::abs(ve / Ve - 1));
+  }
+  out.wall_volume_change = v / V - 1;
+  out.mean_J_error = err / V;
+  const double V0 = cavity_volume(spec.mesh, "endo", Eigen::VectorXd::Zero(3 * spec.mesh.num_nodes())).volume;
+  out.cavity_growth = r.history.back().cavity_volumes[0] / V0 - 1;
+  for (size_t s = 1; s < r.history.size(); ++s)
+    out.volumes_increase &= r.history[s].cavity_volumes[0] > r.history[s - 1].cavity_volumes[0];
+  std::printf("LV %dx%dx%d at 1.5 kPa: cavity +%.1f %%, wall volume change %.1e, mean |J-1| %.2e, worst "
+              "element mean |J-1| %.2e\n",
+              circumferential, longitudinal, transmural, 100 * out.cavity_growth, out.wall_volume_change,
+              out.mean_J_error, out.worst_element_J_error);
+  return out;
+}
+
+// The Lagrange multiplier holds the wall's volume exactly (its P1 test functions sum to
+// one, so ∫(J̄ − 1) = 0 is one of the constraints) and J̄ → 1 under refinement. Pointwise
+// J̄ = 1 holds only weakly (against P1 pressures): measured here, the mean |J̄ − 1| is
+// 2–3 % at these resolutions, not the 1e-3 the issue hoped for (see the issue note).
+TEST(LvInflation, LagrangeMultiplierHoldsWallVolumeAndJTendsToOne) {
+  const Inflation coarse = inflate(8, 4, 1), fine = inflate(16, 8, 2);
+  for (const Inflation* r : {&coarse, &fine}) {
+    EXPECT_GT(r->cavity_growth, 0.3);  // large inflation
+    EXPECT_LT(std::abs(r->wall_volume_change), 1e-10);
+    EXPECT_TRUE(r->volumes_increase);
+  }
+  EXPECT_LT(fine.mean_J_error, 0.7 * coarse.mean_J_error);
+  EXPECT_LT(fine.worst_element_J_error, coarse.worst_element_J_error);
+}
+
+}  // namespace
+}  // namespace fe2
