@@ -286,8 +286,11 @@ TEST(ManufacturedSolution, TaylorHoodConvergesAtOrdersThreeTwoTwo) {
 }
 
 TEST(ManufacturedSolution, StabilizedP1P1ConvergesAtOrdersTwoOneOne) {
-  expect_orders(solve_manufactured(1, 4, true, 1e5, kMu), solve_manufactured(1, 8, true, 1e5, kMu), 2, 1, 1,
-                "P1/P1 stabilized, perturbed");
+  const Errors fine = solve_manufactured(1, 8, true, 1e5, kMu);
+  expect_orders(solve_manufactured(1, 4, true, 1e5, kMu), fine, 2, 1, 1, "P1/P1 stabilized, perturbed");
+  // The stabilization removes the pressure's checkerboard mode: |p − p*| is 2.9 here
+  // (p* has amplitude 60, RMS ≈ 42); without it 51 (measured), with the same orders.
+  EXPECT_LT(fine.p_L2, 5.0);
 }
 
 }  // namespace
