@@ -6,12 +6,15 @@
 // DOFs of ū are eliminated: free DOFs get equation numbers, in DOF order.
 //
 // Macro terms (MacroTerm.h) declare the local blocks they fill, a DOF list each; the
-// pattern is their union, in a fixed order, so each iteration only refills values.
+// pattern is their union (one triplet per entry), in a fixed order, so each iteration
+// only refills values.
 // With several coordinators each declares the blocks of its own elements (MUMPS
 // distributed assembled input sums duplicates).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/RunSpec.h"
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 namespace fe2 {
@@ -67,6 +70,7 @@ class MacroSystem {
   std::vector<Block> blocks_;
   std::vector<int> slot_;               ///< per block entry (row-major): slot or −1
   std::vector<int> rows_, cols_;
+  std::unordered_map<uint64_t, int> slot_of_entry_;  ///< (row << 32 | col) -> slot
 };
 
 }  // namespace fe2
