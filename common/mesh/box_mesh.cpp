@@ -1,6 +1,7 @@
 #include "common/mesh/box_mesh.h"
 
 #include "common/error.h"
+#include "common/mesh/kuhn_split.h"
 
 #include <climits>
 #include <cmath>
@@ -13,24 +14,6 @@ constexpr const char* kSource = "make_box_mesh";
 constexpr const char* kFaceNames[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
 
 using Corner = std::array<int, 3>;  // 0/1 offsets of a cell corner along x, y, z
-
-// Kuhn split of the unit cube: one tet per permutation p of the axes, along the path
-// 000 -> e_p0 -> e_p0 + e_p1 -> 111. Its volume has the sign of p, so odd permutations
-// swap nodes 1 and 2 to come out positive.
-std::array<std::array<Corner, 4>, 6> kuhn_tets() {
-  constexpr int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
-  std::array<std::array<Corner, 4>, 6> tets{};
-  for (int t = 0; t < 6; ++t) {
-    Corner c{0, 0, 0};
-    tets[t][0] = c;
-    for (int s = 0; s < 3; ++s) {
-      c[perms[t][s]] = 1;
-      tets[t][s + 1] = c;
-    }
-    if (t >= 3) std::swap(tets[t][1], tets[t][2]);
-  }
-  return tets;
-}
 
 void check_arguments(const Vec3& lo, const Vec3& hi, const std::array<int, 3>& n, int axis,
                      int slabs) {

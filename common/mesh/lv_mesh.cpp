@@ -1,6 +1,7 @@
 #include "common/mesh/lv_mesh.h"
 
 #include "common/error.h"
+#include "common/mesh/kuhn_split.h"
 
 #include <cmath>
 #include <string>
@@ -14,25 +15,6 @@ constexpr const char* kSource = "make_lv_mesh";
 // A grid point (i, k, j): shell i (transmural, 0 = endo), azimuth index k (not wrapped:
 // k = circumferential is the same point as k = 0), ring j from the apex (j = 0 apex).
 using GridPoint = std::array<int, 3>;
-
-// Kuhn split of the unit cube in the grid axes (t, φ, θ), as in box_mesh.cpp: one tet per
-// axis permutation, odd permutations with nodes 1 and 2 swapped. (t, φ, θ) is a
-// right-handed frame (outward, counter-clockwise, toward the base), so these tets are
-// positively oriented in space too.
-std::array<std::array<GridPoint, 4>, 6> kuhn_tets() {
-  constexpr int perms[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
-  std::array<std::array<GridPoint, 4>, 6> tets{};
-  for (int t = 0; t < 6; ++t) {
-    GridPoint c{0, 0, 0};
-    tets[t][0] = c;
-    for (int s = 0; s < 3; ++s) {
-      c[perms[t][s]] = 1;
-      tets[t][s + 1] = c;
-    }
-    if (t >= 3) std::swap(tets[t][1], tets[t][2]);
-  }
-  return tets;
-}
 
 void check(bool ok, const std::string& name, double value, const std::string& expected) {
   if (!ok) throw InputError(fmt::format("{}: {} = {}: expected {}", kSource, name, value, expected));
@@ -106,6 +88,8 @@ TetMesh make_lv_mesh(const LvMeshParams& p) {
 
   // Tets with the grid points of their corners (needed to place quadratic edge nodes).
   std::vector<std::array<GridPoint, 4>> tet_grid;
+  // Kuhn split in the grid axes (t, φ, θ): a right-handed frame (outward,
+  // counter-clockwise, toward the base), so the tets are positively oriented in space too.
   const auto kuhn = kuhn_tets();
   for (int j = 0; j < nl; ++j)
     for (int k = 0; k < nc; ++k)
