@@ -182,9 +182,9 @@ TEST(Land2017, RestStateIsTheEquilibriumOfThePublishedEquations) {
   EXPECT_GT(y[1], 0.99);                  // nearly every site blocked at rest
 }
 
-TEST(Land2017, IsometricTwitchEqualsAnIndependentAccurateIntegration) {
-  const Land2017 m = default_land();
-  const std::vector<double> Ta = model_twitch(m);
+/// T_a (Pa) of the isometric twitch every 1 ms, integrated by Dormand–Prince from the
+/// model's rest state.
+std::vector<double> land_reference_twitch(const Land2017& m) {
   const RefLand ref;
   std::array<double, 6> y;
   m.rest_state(y);
@@ -196,6 +196,13 @@ TEST(Land2017, IsometricTwitchEqualsAnIndependentAccurateIntegration) {
     dormand_prince(f, k - 1.0, k, y, 1e-10, 1e-14);  // ms
     Tref.push_back(1e3 * ref.tension(1.0, y));       // kPa -> Pa
   }
+  return Tref;
+}
+
+TEST(Land2017, IsometricTwitchEqualsAnIndependentAccurateIntegration) {
+  const Land2017 m = default_land();
+  const std::vector<double> Ta = model_twitch(m);
+  const std::vector<double> Tref = land_reference_twitch(m);
   expect_trace_matches(Ta, Tref);
 
   // A physiological twitch of the intact set: submaximal activation (a twitch does
