@@ -11,6 +11,8 @@
 #include "common/cellmodels/cell_model_schema.h"
 #include "common/error.h"
 #include "common/spec/SchemaNode.h"
+#include "common/spec/json_schema.h"
+#include "common/spec/spec_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -519,6 +521,14 @@ TEST(CellModelSpec, ReaderAndSchemaAgreeOnEveryKey) {
   for (const auto& b : schema->branches) check(b.keys, b.value);
   EXPECT_EQ(keys, 1 + (1 + 17 + 1 + 5 + 1) + (3 + 1 + 5 + 1) + 1 + 1);
   EXPECT_EQ(schema->branches.size(), cell_model_names().size());
+
+  // The reference and the JSON Schema render it (as the lead's spec-doc will).
+  const std::string doc_text = spec_reference({{"active", schema.get()}});
+  EXPECT_NE(doc_text.find("tau_rise"), std::string::npos);
+  EXPECT_NE(doc_text.find("default: intact 120000, skinned 40500"), std::string::npos);
+  const std::string js = to_json_schema(*schema, "x", "cell model").dump();
+  EXPECT_NE(js.find("land2017"), std::string::npos);
+  EXPECT_NE(js.find("prefixItems"), std::string::npos);
 }
 
 }  // namespace
