@@ -186,8 +186,7 @@ TEST(Land2017, RestStateIsTheEquilibriumOfThePublishedEquations) {
 
 /// T_a (Pa) of the isometric twitch every 1 ms, integrated by Dormand–Prince from the
 /// model's rest state.
-std::vector<double> land_reference_twitch(const Land2017& m) {
-  const RefLand ref;
+std::vector<double> land_reference_twitch(const Land2017& m, const RefLand& ref = RefLand()) {
   std::array<double, 6> y;
   m.rest_state(y);
   std::vector<double> Tref{1e3 * ref.tension(1.0, y)};
@@ -218,6 +217,29 @@ TEST(Land2017, IsometricTwitchEqualsAnIndependentAccurateIntegration) {
   EXPECT_LE(p.at, 200);
   EXPECT_LT(Ta.back(), 0.05 * p.peak);
   EXPECT_LT(Ta.front(), 0.01 * p.peak);
+}
+
+TEST(Land2017, SkinnedTwitchEqualsAnIndependentAccurateIntegration) {
+  // The skinned column is stiffer (k_b min(100, ·) ≈ 27 /ms at rest), still within RK4's
+  // stability interval at the default 0.1 ms substep. Its calcium sensitivity (2.5 µM)
+  // needs more calcium than the default transient.
+  CalciumParameters ca;
+  ca.peak = 4.0;
+  const Land2017 m(Land2017Parameters::skinned(), ca, 1e-4);
+  RefLand ref;
+  ref.ca50 = 2.5, ref.ntm = 2.2, ref.kuw = 0.026, ref.kws = 0.004, ref.Tref = 40.5;
+  const RefCalcium rc{0.1, 4.0, 20.0, 110.0};
+  std::array<double, 6> y;
+  m.rest_state(y);
+  std::vector<double> Tref{1e3 * ref.tension(1.0, y)};
+  auto f = [&](double t, const std::array<double, 6>& z, std::array<double, 6>& dz) {
+    ref.rhs(rc(t), 1.0, 0.0, z, dz);
+  };
+  for (int k = 1; k <= kSteps; ++k) {
+    dormand_prince(f, k - 1.0, k, y, 1e-10, 1e-14);
+    Tref.push_back(1e3 * ref.tension(1.0, y));
+  }
+  expect_trace_matches(model_twitch(m), Tref);
 }
 
 /// T_a after a 20 ms ramp at rate `rate` starting near the peak (t = 0.1 s) from the
