@@ -614,9 +614,13 @@ GmshTags read_gmsh_tags(const std::string& file) {
   return t;
 }
 
-GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, const std::string& name) {
-  const MshData d = parse_msh_file(file, /*require_mesh=*/false);
+namespace {
+
+/// The one view named `name` of `d` with `components` components (else InputError).
+const DataView& find_view(const MshData& d, const std::string& file, GmshDataOn on, const std::string& name,
+                          int components) {
   const bool elements = on == GmshDataOn::elements;
+  const char* kind = components == 3 ? "a vector" : "a scalar";
   const char* section = elements ? "$ElementData" : "$NodeData";
   const DataView* found = nullptr;
   std::vector<std::string> names;
@@ -632,19 +636,33 @@ GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, con
   }
   if (!found)
     throw InputError(fmt::format("file '{}': no {} view named \"{}\" (its {} views: {}), expected one with "
-                                 "3 components per {}",
+                                 "{} components per {}",
                                  file, section, name, section,
                                  names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")),
-                                 elements ? "element" : "node"));
-  if (found->components != 3)
-    throw InputError(fmt::format("file '{}' line {}: {} view \"{}\" has {} components, expected 3 (a vector)", file,
-                                 found->line, section, name, found->components));
+                                 components, elements ? "element" : "node"));
+  if (found->components != components)
+    throw InputError(fmt::format("file '{}' line {}: {} view \"{}\" has {} components, expected {} ({})", file,
+                                 found->line, section, name, found->components, components, kind));
+  return *found;
+}
+
+}  // namespace
+
+GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, const std::string& name) {
+  const MshData d = parse_msh_file(file, /*require_mesh=*/false);
+  const DataView* found = &find_view(d, file, on, name, 3);
   GmshVectorView out;
   out.tags = found->tags;
   out.lines = found->lines;
   for (std::size_t i = 0; i < found->tags.size(); ++i)
     out.values.emplace_back(found->values[3 * i], found->values[3 * i + 1], found->values[3 * i + 2]);
   return out;
+}
+
+GmshScalarView read_gmsh_scalar_view(const std::string& file, GmshDataOn on, const std::string& name) {
+  const MshData d = parse_msh_file(file, /*require_mesh=*/false);
+  const DataView& v = find_view(d, file, on, name, 1);
+  return {v.tags, v.values, v.lines};
 }
 
 }  // namespace fe2

@@ -54,4 +54,12 @@ struct GmshVectorView {
 };
 GmshVectorView read_gmsh_vector_view(const std::string& file, GmshDataOn on, const std::string& name);
 
+/// A 1-component view (e.g. "activation"), found and checked as read_gmsh_vector_view.
+struct GmshScalarView {
+  std::vector<long long> tags;
+  std::vector<double> values;
+  std::vector<int> lines;  ///< file line of each entry, for messages
+};
+GmshScalarView read_gmsh_scalar_view(const std::string& file, GmshDataOn on, const std::string& name);
+
 }  // namespace fe2

@@ -1,0 +1,10 @@
+#pragma once
+// The schema of the run spec's "activation" object (activation_spec.h reads exactly
+// these keys); the lead's spec_schemas.cpp puts it under the top-level "activation".
+#include "common/spec/SchemaNode.h"
+
+namespace fe2 {
+
+Schema activation_schema();
+
+}  // namespace fe2
