@@ -164,6 +164,9 @@ void Simulation::predict(double dt) {
 
 // --- (a)–(e): the points answer, agreed valid on every coordinator
 void Simulation::evaluate_points(int step, int iteration, double t_new, double dt) {
+  // c = ∂Ż̄/∂Z̄: Newmark's v depends on ū through γ/(βΔt); quasi-static rates are
+  // backward differences. The points' tangents take ∂Π/∂Ż with this weight.
+  const double Zdot_coefficient = spec_.dynamic ? spec_.gamma / (spec_.beta * dt) : 1.0 / dt;
   std::string why;
   try {
     for (size_t s = 0; s < owned_points_.size(); ++s) {
@@ -194,6 +197,7 @@ void Simulation::evaluate_points(int step, int iteration, double t_new, double d
       job.force_refresh = 0;
       job.Zbar = R_[k] * Zbar;  // Z̄_μ = QᵀZ̄Q
       job.Zbar_dot = R_[k] * Zdot;
+      job.Zbar_dot_coefficient = Zdot_coefficient;
     }
   } catch (const NumericalError& e) {
     why = e.what();

@@ -19,6 +19,10 @@ struct JobInput {
   uint8_t force_refresh = 0;  ///< refactor K and recompute χ whatever the policy says
   Vec9 Zbar = Vec9::Zero();       ///< Z̄_μ, macro displacement gradient in the unit frame
   Vec9 Zbar_dot = Vec9::Zero();   ///< Ż̄_μ
+  /// c = ∂Ż̄/∂Z̄ of the macro time integrator (1/Δt quasi-static, γ/(βΔt) Newmark, 0
+  /// without a step): the point's tangent is 𝔸 = ∂Π/∂Z + c ∂Π/∂Ż (Material.h).
+  double Zbar_dot_coefficient = 0.0;
+  double activation_time = 0.0;   ///< when the point's cells are excited (s)
 };
 
 enum class Refresh : uint8_t { reuse = 0, refresh = 1 };

@@ -60,6 +60,8 @@ void pack_job(ByteWriter& w, const JobInput& j) {
   w.put(j.force_refresh);
   w.put_raw(j.Zbar.data(), 9 * sizeof(double));
   w.put_raw(j.Zbar_dot.data(), 9 * sizeof(double));
+  w.put(j.Zbar_dot_coefficient);
+  w.put(j.activation_time);
 }
 
 JobInput unpack_job(ByteReader& r) {
@@ -73,7 +75,10 @@ JobInput unpack_job(ByteReader& r) {
   j.force_refresh = r.get<uint8_t>();
   r.get_raw(j.Zbar.data(), 9 * sizeof(double));
   r.get_raw(j.Zbar_dot.data(), 9 * sizeof(double));
-  if (j.unit < 0 || j.iteration < 1 || !j.Zbar.allFinite() || !j.Zbar_dot.allFinite())
+  j.Zbar_dot_coefficient = r.get<double>();
+  j.activation_time = r.get<double>();
+  if (j.unit < 0 || j.iteration < 1 || !j.Zbar.allFinite() || !j.Zbar_dot.allFinite() ||
+      !std::isfinite(j.Zbar_dot_coefficient) || !std::isfinite(j.activation_time))
     throw Error(fmt::format("{}: invalid job (unit {}, iteration {})", r.what(), j.unit, j.iteration));
   return j;
 }

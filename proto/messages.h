@@ -12,7 +12,7 @@
 //   State    i32 unit | u64 n | n bytes (a unit's serialized state)
 //   Costs    i32 step | i32 iteration | u64 n | n × JobCost   (coordinator k -> 0, gathered)
 //   JobInput  = i32 unit, step, iteration | f64 time, dt | u8 apply_update, force_refresh |
-//               9 f64 Z̄ | 9 f64 Ż̄                                   (kJobInputBytes)
+//               9 f64 Z̄ | 9 f64 Ż̄ | f64 ∂Ż̄/∂Z̄ | f64 t_act             (kJobInputBytes)
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
 //               u8 next_refresh | u64 state_bytes | u8 status | message string
@@ -37,7 +37,7 @@ const char* name_of(Type t);
 /// Point-to-point tags; one per message type.
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
-constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8;
+constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
 constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 1;
 constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 1;
 

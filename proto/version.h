@@ -4,6 +4,6 @@
 namespace fe2::proto {
 
 /// Bumped whenever any message layout changes. Ranks refuse to talk across versions.
-constexpr uint16_t kProtocolVersion = 2;
+constexpr uint16_t kProtocolVersion = 3;  // 3: JobInput gains Zbar_dot_coefficient, activation_time
 
 }  // namespace fe2::proto

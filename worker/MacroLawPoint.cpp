@@ -14,7 +14,10 @@ constexpr size_t kVersion1Tail = sizeof(uint64_t) + 9 * sizeof(double);
 MacroLawPoint::MacroLawPoint(MaterialPtr material)
     : material_(std::move(material)),
       history_(static_cast<size_t>(material_->history_size()), 0.0),
-      history_committed_(history_) {}
+      history_committed_(history_) {
+  material_->initial_history(history_committed_);  // e.g. a resting cell
+  history_ = history_committed_;
+}
 
 proto::JobOutput MacroLawPoint::iterate(const proto::JobInput& in) {
   proto::JobOutput out;
@@ -22,10 +25,13 @@ proto::JobOutput MacroLawPoint::iterate(const proto::JobInput& in) {
   out.unit = in.unit;
   Zbar_ = in.Zbar;
   Vec9 Pi;
-  // The point is the macro integration point itself: Ż = Ż̄ as the coordinator sent it.
-  const MaterialPointContext context{in.time, in.dt, in.Zbar_dot};
+  // The point is the macro integration point itself: Ż = Ż̄ as the coordinator sent it,
+  // and 𝔸 = ∂Π/∂Z + c ∂Π/∂Ż with c = ∂Ż̄/∂Z̄ of the macro integrator.
+  const MaterialPointContext context{in.time, in.dt, in.Zbar_dot, in.activation_time};
+  Mat9 A_rate;
   material_->stress_and_tangent_at(in.Zbar, context, {history_committed_, history_}, Pi,
-                                   out.A_hom);
+                                   out.A_hom, A_rate);
+  if (material_->rate_dependent()) out.A_hom += in.Zbar_dot_coefficient * A_rate;
   out.P_bar = Pi;
   out.P_tilde = Pi;
   out.r_norm = 0.0;

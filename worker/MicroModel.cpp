@@ -227,6 +227,15 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
   fingerprint_ = hash.value();
 }
 
+void MicroModel::initial_history(std::span<double> history) const {
+  if (history_offset_.empty()) return;
+  for (int e = 0; e < num_elements(); ++e) {
+    const Material& m = material_of(e);
+    const size_t h = static_cast<size_t>(m.history_size());
+    for (size_t q = 0; q < 8 && h > 0; ++q) m.initial_history(history.subspan(history_offset_[e] + q * h, h));
+  }
+}
+
 FactorKind MicroModel::initial_factor_kind() const {
   switch (options_.factorization) {
     case MicroSolverOptions::Factorization::cholesky: return FactorKind::cholesky;

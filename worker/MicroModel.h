@@ -101,6 +101,8 @@ class MicroModel {
   /// Doubles of point history in one unit: Σ_e 8 · (history_size of e's law); 0 when no
   /// law keeps history (then units allocate none).
   size_t history_size() const { return history_offset_.empty() ? 0 : history_offset_.back(); }
+  /// Every Gauss point's history as its law starts it (Material::initial_history).
+  void initial_history(std::span<double> history) const;
   /// Where element e's history (8 Gauss points, point q at q · history_size of its law)
   /// starts in a unit's history array.
   size_t history_offset(int e) const { return history_offset_.empty() ? 0 : history_offset_[e]; }

@@ -25,6 +25,7 @@ MicroUnit::MicroUnit(MicroModelPtr model)
   dw1_ = Vec::Zero(n);
   w_committed_ = Vec::Zero(n);
   history_.assign(model_->history_size(), 0.0);  // empty unless some law keeps history
+  model_->initial_history(history_);             // e.g. resting cells
   history_committed_ = history_;
   chi_ = Eigen::MatrixXd::Zero(n, 9);
   sys_.K = model_->pattern();
@@ -59,6 +60,8 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
   point.time = time_;
   point.dt = dt_;
   point.Zbar_dot = Zbar_dot_;
+  point.Zbar_dot_coefficient = Zbar_dot_coefficient_;
+  point.activation_time = activation_time_;
   for (int e = 0; e < m.num_elements(); ++e) {
     const auto& eq = m.element_equations(e);
     for (int i = 0; i < 3; ++i)
@@ -206,6 +209,8 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   time_ = in.time;
   dt_ = in.dt;
   Zbar_dot_ = in.Zbar_dot;
+  Zbar_dot_coefficient_ = in.Zbar_dot_coefficient;
+  activation_time_ = in.activation_time;
 
   {
     ScopedCpuTimer t(out.cpu_assembly);  // Fig. 5 (b)

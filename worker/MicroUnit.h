@@ -104,6 +104,8 @@ class MicroUnit final : public PointModel {
   // --- the last job's context (set by every job, so not state) ---
   double time_ = 0.0, dt_ = 0.0;
   Vec9 Zbar_dot_ = Vec9::Zero();
+  double Zbar_dot_coefficient_ = 0.0;
+  double activation_time_ = 0.0;
   // --- workspace ---
   System sys_;
   std::unique_ptr<SparseFactor> factor_;

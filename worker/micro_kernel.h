@@ -31,6 +31,8 @@ struct HexPointContext {
   double time = 0.0;
   double dt = 0.0;
   Vec9 Zbar_dot = Vec9::Zero();          ///< Ż̄
+  double Zbar_dot_coefficient = 0.0;     ///< ∂Ż̄/∂Z̄ of the macro integrator
+  double activation_time = 0.0;          ///< the unit's activation time (s)
   Eigen::Matrix<double, 3, 8> w_dot_e;   ///< ẇ of the element's nodes, as w_e
   const double* history_committed = nullptr;  ///< 8·h values (null when h = 0)
   double* history = nullptr;                  ///< 8·h values, written

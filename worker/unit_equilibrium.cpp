@@ -4,11 +4,18 @@ namespace fe2 {
 
 UnitEquilibrium equilibrate(MicroUnit& unit, const Vec9& Zbar, double rtol, int max_iterations,
                             int step) {
-  UnitEquilibrium eq;
   proto::JobInput in;
-  in.unit = 0;
   in.step = step;
   in.Zbar = Zbar;
+  return equilibrate(unit, in, rtol, max_iterations);
+}
+
+UnitEquilibrium equilibrate(MicroUnit& unit, const proto::JobInput& job, double rtol,
+                            int max_iterations) {
+  UnitEquilibrium eq;
+  proto::JobInput in = job;
+  in.unit = 0;
+  in.force_refresh = 0;
   for (int it = 1; it <= max_iterations; ++it) {
     in.iteration = it;
     in.apply_update = it > 1;

@@ -22,4 +22,10 @@ struct UnitEquilibrium {
 UnitEquilibrium equilibrate(MicroUnit& unit, const Vec9& Zbar, double rtol, int max_iterations,
                             int step = 0);
 
+/// The same over a step of a scene: `job` gives Z̄, Ż̄, ∂Ż̄/∂Z̄, t, Δt, the step and the
+/// activation time (its unit, iteration and update flags are set here). The unit's
+/// history advances from its committed state and is committed at the equilibrium.
+UnitEquilibrium equilibrate(MicroUnit& unit, const proto::JobInput& job, double rtol,
+                            int max_iterations);
+
 }  // namespace fe2

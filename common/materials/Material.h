@@ -9,7 +9,9 @@
 #include "common/materials/MaterialPointContext.h"
 #include "common/tensor9.h"
 
+#include <algorithm>
 #include <memory>
+#include <span>
 #include <string>
 
 namespace fe2 {
@@ -59,12 +61,27 @@ class Material {
   /// context for laws that do not, so stateless laws cost nothing extra.
   virtual bool uses_context() const { return history_size() > 0; }
 
-  /// Π and 𝔸 at a point with its context: reads history.committed, writes
-  /// history.current (history_size() doubles each). 𝔸 = dΠ/dZ of the step's update.
-  /// Default: the stateless pair.
+  /// Π and its two tangents at a point with its context: reads history.committed,
+  /// writes history.current (history_size() doubles each).
+  ///   A       = ∂Π/∂Z at fixed Ż   (through the step's history update)
+  ///   A_rate  = ∂Π/∂Ż at fixed Z   (zero unless rate_dependent())
+  /// The point model builds its step tangent from its own rate rule: with
+  /// Ż = c (Z − Z_n) + …, 𝔸 = A + c·A_rate (c = 1/Δt for backward Euler, γ/(βΔt) under
+  /// Newmark). Default: the stateless pair.
   virtual void stress_and_tangent_at(const Vec9& Z, const MaterialPointContext& context,
-                                     PointHistory history, Vec9& Pi, Mat9& A) const {
+                                     PointHistory history, Vec9& Pi, Mat9& A,
+                                     Mat9& A_rate) const {
     stress_and_tangent(Z, Pi, A);
+    A_rate.setZero();
+  }
+
+  /// Whether Π depends on Ż (A_rate may be nonzero).
+  virtual bool rate_dependent() const { return false; }
+
+  /// The history of a point that has seen nothing yet (a resting cell): history_size()
+  /// doubles. Default: zeros.
+  virtual void initial_history(std::span<double> history) const {
+    std::fill(history.begin(), history.end(), 0.0);
   }
 
   /// Serialization of parameters is by spec (materials are rebuilt from JSON).

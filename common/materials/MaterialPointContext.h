@@ -11,9 +11,9 @@
 //                      Newton iteration can be repeated or rolled back at no risk)
 //
 // Both spans hold Material::history_size() doubles; empty for laws without history.
-// A law's tangent 𝔸 is the derivative of its whole step update with respect to Z: with
-// the backward-Euler rates the point models pass (Ż = (Z − Z_n)/Δt), that includes
-// (∂Π/∂Ż)/Δt and the dependence through the current history.
+// A law returns ∂Π/∂Z at fixed Ż and ∂Π/∂Ż at fixed Z, each through its history update
+// (Material::stress_and_tangent_at); the point model, which knows how its Ż follows
+// from Z (backward Euler, Newmark), combines them into the step's tangent.
 #include "common/tensor9.h"
 
 #include <span>
@@ -24,6 +24,7 @@ struct MaterialPointContext {
   double time = 0.0;          ///< t at the end of the step (the state being solved for)
   double dt = 0.0;            ///< Δt of the step; 0 when there is no step (a lone evaluation)
   Vec9 Zdot = Vec9::Zero();   ///< Ż at this point, column-major as Z (DESIGN §1)
+  double activation_time = 0.0;  ///< when this point's cells are excited (s)
 };
 
 /// One point's history: the committed values (read-only) and the current ones (written).

@@ -38,9 +38,11 @@ TEST(MaterialPointContext, StatelessLawsIgnoreTheContextBitForBit) {
     EXPECT_EQ(law->history_size(), 0) << law->name();
     EXPECT_FALSE(law->uses_context()) << law->name();
     Vec9 Pi, Pi_at;
-    Mat9 A, A_at;
+    Mat9 A, A_at, A_rate = Mat9::Constant(1.0);
     law->stress_and_tangent(Z, Pi, A);
-    law->stress_and_tangent_at(Z, some_context(), {}, Pi_at, A_at);
+    law->stress_and_tangent_at(Z, some_context(), {}, Pi_at, A_at, A_rate);
+    EXPECT_FALSE(law->rate_dependent()) << law->name();
+    EXPECT_EQ(A_rate.norm(), 0.0) << law->name();
     EXPECT_EQ(std::memcmp(Pi.data(), Pi_at.data(), sizeof(double) * 9), 0) << law->name();
     EXPECT_EQ(std::memcmp(A.data(), A_at.data(), sizeof(double) * 81), 0) << law->name();
   }
@@ -58,8 +60,8 @@ TEST(MaterialPointContext, HistoryLawIntegratesFromTheCommittedHistory) {
   committed[test::HistoryLaw::kAlpha] = 0.25;
   const Vec9 Z = some_Z();
   Vec9 Pi, Pi_nh;
-  Mat9 A, A_nh;
-  law.stress_and_tangent_at(Z, c, {committed, current}, Pi, A);
+  Mat9 A, A_nh, A_rate;
+  law.stress_and_tangent_at(Z, c, {committed, current}, Pi, A, A_rate);
   nh.stress_and_tangent(Z, Pi_nh, A_nh);
 
   // Ż:Ż = 0.09+0.04+0.01+0.0025+0.16+0.01+0.04+0+0.09 = 0.4425
@@ -75,7 +77,7 @@ TEST(MaterialPointContext, HistoryLawIntegratesFromTheCommittedHistory) {
   // Evaluating again from the same committed history gives the same current history:
   // a Newton iteration may be repeated.
   const std::vector<double> first = current;
-  law.stress_and_tangent_at(Z, c, {committed, current}, Pi, A);
+  law.stress_and_tangent_at(Z, c, {committed, current}, Pi, A, A_rate);
   EXPECT_EQ(current, first);
 }
 

@@ -17,6 +17,8 @@ JobInput some_job(int unit) {
   j.dt = 0.05;
   j.apply_update = 1;
   for (int i = 0; i < 9; ++i) j.Zbar[i] = 0.01 * i, j.Zbar_dot[i] = -0.1 * i;
+  j.Zbar_dot_coefficient = 40.0 + unit;
+  j.activation_time = 0.0125 * unit;
   return j;
 }
 
@@ -58,6 +60,8 @@ TEST(Messages, BatchRoundTripAndCorruption) {
   EXPECT_EQ(back.jobs[1].unit, 9);
   EXPECT_EQ(back.jobs[0].Zbar, b.jobs[0].Zbar);
   EXPECT_EQ(back.jobs[0].Zbar_dot, b.jobs[0].Zbar_dot);
+  EXPECT_EQ(back.jobs[1].Zbar_dot_coefficient, 49.0);
+  EXPECT_EQ(back.jobs[1].activation_time, 0.0125 * 9);
   EXPECT_FALSE(back.done);
   expect_rejects_corruption<Batch>(bytes);
   // A message of another type is refused by name.

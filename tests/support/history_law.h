@@ -25,7 +25,8 @@ class HistoryLaw final : public Material {
   }
   int history_size() const override { return kSize; }
   void stress_and_tangent_at(const Vec9& Z, const MaterialPointContext& ctx, PointHistory h,
-                             Vec9& Pi, Mat9& A) const override {
+                             Vec9& Pi, Mat9& A, Mat9& A_rate) const override {
+    A_rate.setZero();
     const double alpha = alpha_next(h.committed[kAlpha], ctx);
     nh_.stress_and_tangent(Z, Pi, A);
     Pi *= 1.0 + alpha;

@@ -229,7 +229,8 @@ class ContextReadingNeoHookean final : public Material {
   }
   bool uses_context() const override { return true; }
   void stress_and_tangent_at(const Vec9& Z, const MaterialPointContext& c, PointHistory h,
-                             Vec9& Pi, Mat9& A) const override {
+                             Vec9& Pi, Mat9& A, Mat9& A_rate) const override {
+    A_rate.setZero();
     EXPECT_TRUE(h.committed.empty() && h.current.empty());
     EXPECT_EQ(c.dt, 0.05);
     nh_.stress_and_tangent(Z, Pi, A);
