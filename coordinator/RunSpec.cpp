@@ -1,5 +1,6 @@
 #include "coordinator/RunSpec.h"
 
+#include "common/activation/activation_spec.h"
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/box_mesh.h"
@@ -263,6 +264,16 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   root.string("description", "", "what the scene shows and how to view it");
   read_mesh(root.child("mesh", true, "macro mesh"), spec);
   read_frame(root.child("frame", false, "material frame (fibre, sheet, normal)"), spec);
+  if (root.has("activation")) {
+    // An eikonal front follows the fibres: the frame field is built now (and kept, so
+    // the macro side does not solve a rule's Laplace problems twice).
+    spec.frame.built = make_frame_field(spec.frame.field, spec.mesh);
+    const bool gmsh = spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
+    SpecNode activation = root.child(
+        "activation", false, "activation time of every material point (when its calcium transient starts)");
+    spec.activation = read_activation(activation, spec.mesh, spec.frame.built.get(), spec.base_dir,
+                                      gmsh ? spec.mesh_source : "");
+  }
   read_formulation(root.child("formulation", false, "macro discretization: displacement only, or "
                                                     "mixed displacement–pressure"),
                    spec);

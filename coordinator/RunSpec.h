@@ -6,6 +6,7 @@
 // A scene names its effects; an effect that is off allocates and assembles nothing:
 //   point models (FE² units or the macro law, per region), Dirichlet conditions,
 //   follower pressure, inertia (Newmark), probes.
+#include "common/activation/ActivationField.h"
 #include "common/fibres/frame_spec.h"
 #include "common/materials/Material.h"
 #include "common/mesh/TetMesh.h"
@@ -44,6 +45,7 @@ struct PressureSpec {
 /// FrameField (common/fibres/), which replaces at() once the macro side calls it.
 struct FrameSpec {
   FrameFieldSpec field;
+  std::shared_ptr<const FrameField> built;  ///< the field, once built (else make_frame_field)
   Vec3 fibre = Vec3::UnitX();
   Vec3 sheet = Vec3::UnitY();
   bool rotating = false;
@@ -74,6 +76,8 @@ struct RunSpec {
   TetMesh mesh;
   std::string mesh_source;
   FrameSpec frame;
+  /// When each point's cells are excited ("activation"); null: all at t = 0.
+  std::shared_ptr<const ActivationField> activation;
   std::vector<PointModelSpec> models;
   std::map<int, int> model_of_region;  ///< region tag -> model index
   int default_model = 0;

@@ -48,14 +48,17 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
   if (system_.num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
   // The material frame at every point (a rule-based field solves its Laplace problems here).
-  const auto field = make_frame_field(spec.frame.field, spec.mesh);
+  const auto field = spec.frame.built ? spec.frame.built : make_frame_field(spec.frame.field, spec.mesh);
   const int np = points_.size();
   Q_.resize(np);
   R_.resize(np);
+  activation_time_.assign(np, 0.0);
   for (int k = 0; k < np; ++k) {
     const Vec4& l = points_[k].bary;
-    Q_[k] = field->at(points_[k].element, Bary{l[0], l[1], l[2], l[3]}, points_[k].X);
+    const Bary bary{l[0], l[1], l[2], l[3]};
+    Q_[k] = field->at(points_[k].element, bary, points_[k].X);
     R_[k] = frame_rotation(Q_[k]);
+    if (spec.activation) activation_time_[k] = spec.activation->at(points_[k].element, bary);
   }
   for (int k : owned_points_)
     point_dofs_.push_back(displacement_dofs(spec.mesh.element_nodes(points_[k].element)));
@@ -198,6 +201,7 @@ void Simulation::evaluate_points(int step, int iteration, double t_new, double d
       job.Zbar = R_[k] * Zbar;  // Z̄_μ = QᵀZ̄Q
       job.Zbar_dot = R_[k] * Zdot;
       job.Zbar_dot_coefficient = Zdot_coefficient;
+      job.activation_time = activation_time_[k];
     }
   } catch (const NumericalError& e) {
     why = e.what();

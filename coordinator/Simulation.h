@@ -136,6 +136,7 @@ class Simulation {
   bool pattern_set_ = false;
   std::vector<Mat3> Q_;                ///< frame per point
   std::vector<Mat9> R_;
+  std::vector<double> activation_time_;  ///< t_act per point (s)
   std::vector<std::vector<int>> point_dofs_;  ///< per owned point: its element's ū DOFs
   std::function<double(int, double)> dirichlet_value_;
   // Macro state: current and committed (every DOF; v, a used on the ū block).

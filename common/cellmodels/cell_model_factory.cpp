@@ -42,7 +42,7 @@ double read_max_substep(SpecNode& node) {
 /// The overrides are declared only when present, so node.finish() would not suggest
 /// one for a misspelt key; this does, with the same wording.
 void refuse_unknown_land_keys(const SpecNode& node) {
-  std::vector<std::string> known = {"model", "parameter_set", "calcium", "max_substep"};
+  std::vector<std::string> known = {"model", "transverse_fraction", "parameter_set", "calcium", "max_substep"};
   for (const auto& k : land_keys()) known.emplace_back(k.key);
   for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
     if (std::find(known.begin(), known.end(), it.key()) != known.end()) continue;
@@ -135,6 +135,14 @@ CellModelPtr make_cell_model(SpecNode& node) {
     m = make_table(node);
   node.finish();
   return m;
+}
+
+ActiveStressSpec read_active_stress(SpecNode& node) {
+  ActiveStressSpec a;
+  a.transverse_fraction =
+      node.number("transverse_fraction", 0.0, Range{0.0, 1.0, false, true}, cell_keys::kTransverseHelp);
+  a.cell = make_cell_model(node);
+  return a;
 }
 
 }  // namespace fe2

@@ -17,6 +17,16 @@ namespace fe2 {
 /// Reads "model" and that model's keys from `node`, then node.finish().
 CellModelPtr make_cell_model(SpecNode& node);
 
+/// A material's "active" object: its cell model and the transverse fraction n_t of the
+/// active stress (S_a = T_a [(1 − n_t) f₀⊗f₀ + n_t I], common/materials/active_stress.h).
+struct ActiveStressSpec {
+  CellModelPtr cell;
+  double transverse_fraction = 0.0;
+};
+
+/// Reads "transverse_fraction", then the cell model (make_cell_model; finishes the node).
+ActiveStressSpec read_active_stress(SpecNode& node);
+
 /// The model names make_cell_model accepts.
 std::vector<std::string> cell_model_names();
 

@@ -33,6 +33,10 @@ inline const char* const kRiseHelp = "rise time constant tau_rise (s), below dec
 inline const char* const kDecayHelp = "decay time constant tau_decay (s)";
 inline const char* const kPeriodHelp = "beat period (s): beats repeat every period; 0: one beat";
 
+// Read by the material that owns the cell model (common/materials/material_factory.cpp).
+inline const char* const kTransverseHelp =
+    "transverse fraction n_t of the active stress: S_a = T_a [(1 - n_t) f0 f0 + n_t I]";
+
 inline const char* const kMaxSubstepHelp =
     "longest RK4 substep of the cell ODE inside one time step (s); a step is split into "
     "ceil(dt / max_substep) equal substeps";

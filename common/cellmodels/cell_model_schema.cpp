@@ -61,7 +61,10 @@ SchemaKeys table_keys() {
 Schema cell_model_schema() {
   static const Schema s = defined(
       "cell_model",
-      object(false, kModelHelp, {{"model", choice(nullopt, model_names(), kModelHelp)}}, "model",
+      object(false, kModelHelp,
+             {{"model", choice(nullopt, model_names(), kModelHelp)},
+              {"transverse_fraction", number(0.0, Range{0.0, 1.0, false, true}, kTransverseHelp)}},
+             "model",
              {{Land2017::kName, land2017_keys()},
               {BestelClementSorine::kName, bcs_keys()},
               {"constant", {{"Ta", number(nullopt, Range::non_negative(), kTaHelp)}}},

@@ -2,6 +2,9 @@
 
 #include "common/materials/Guccione.h"
 #include "common/materials/HolzapfelOgden.h"
+#include "common/materials/Myocardium.h"
+#include "common/cellmodels/cell_model_factory.h"
+#include "common/cellmodels/cell_model_keys.h"
 #include "common/materials/NeoHookean.h"
 #include "common/materials/StVenantKirchhoff.h"
 
@@ -104,8 +107,19 @@ MaterialPtr make_material(SpecNode& node) {
   MaterialPtr material;
   for (const auto& m : models())
     if (model == m.name) material = m.build(node);
+  MyocardiumOptions myocardium;
+  if (node.has("active")) {
+    SpecNode active = node.child("active", false, cell_keys::kModelHelp);
+    ActiveStressSpec a = read_active_stress(active);
+    myocardium.cell = std::move(a.cell);
+    myocardium.transverse_fraction = a.transverse_fraction;
+  }
+  myocardium.viscosity = node.number("viscosity", 0.0, Range::non_negative(), kViscosityHelp);
   node.finish();
-  return material;
+  // Nothing asked, nothing wrapped: a passive heart keeps the bare law (and its
+  // symmetric tangent, Cholesky path).
+  if (!myocardium.cell && myocardium.viscosity == 0.0) return material;
+  return std::make_shared<const Myocardium>(material, std::move(myocardium));
 }
 
 }  // namespace fe2

@@ -57,7 +57,23 @@ class Printer {
       walk(path + "/<" + n.entry_name + ">", *n.element, "");
     } else if (n.type == T::array) {
       walk(path + "/<i>", *n.element, "");
+    } else if (n.type == T::custom) {
+      // A custom type's object form (e.g. a number or {fibre, sheet, normal}): a line
+      // per property, so every key a user may write is listed.
+      custom_properties(path, n.custom_schema);
     }
+  }
+
+  void custom_properties(const std::string& path, const json& s) {
+    if (s.is_array())
+      for (const auto& sub : s) custom_properties(path, sub);
+    if (!s.is_object()) return;
+    if (s.contains("properties"))
+      for (auto it = s["properties"].begin(); it != s["properties"].end(); ++it)
+        out += fmt::format("  {:<42} {}: in the object form of {}\n", path + "/" + it.key(),
+                           it.value().value("type", std::string("value")), path);
+    for (const char* alt : {"oneOf", "anyOf"})
+      if (s.contains(alt)) custom_properties(path, s[alt]);
   }
 
   std::vector<const SchemaNode*> defs_;

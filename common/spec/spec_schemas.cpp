@@ -4,6 +4,10 @@
 // tests/data/schema/ and require every key here to be read by some spec.
 #include "common/spec/spec_schemas.h"
 
+#include "common/activation/activation_schema.h"
+#include "common/cellmodels/cell_model_schema.h"
+#include "common/materials/material_factory.h"
+
 #include <limits>
 
 namespace fe2 {
@@ -67,7 +71,9 @@ Schema material() {
       object(true, "constitutive law",
              {{"model", choice(nullopt,
                                {"neo_hookean", "st_venant_kirchhoff", "guccione", "holzapfel_ogden"},
-                               "constitutive law")}},
+                               "constitutive law")},
+              {"active", cell_model_schema()},
+              {"viscosity", number(0.0, Range::non_negative(), kViscosityHelp)}},
              "model",
              {{"neo_hookean", isotropic_keys()},
               {"st_venant_kirchhoff", isotropic_keys()},
@@ -252,6 +258,7 @@ Schema make_run_spec_schema() {
                      {{"surface", string(nullopt, "named boundary surface")},
                       {"value", number(nullopt, any, "pressure at t_end (Pa)")},
                       {"ramp", ramp()}}))},
+       {"activation", activation_schema()},
        {"formulation",
         object(false, "macro discretization: displacement only, or mixed displacement–pressure",
                {{"kind", choice("displacement", {"displacement", "mixed"},
