@@ -1,0 +1,141 @@
+#pragma once
+// A 0D blood circulation coupled strongly to the cavities of a wall model (issue #10).
+//
+// The circulation is a network of compartments (nodes) joined by connections:
+//   compartments: a cavity (its pressure p_c is an input: the wall model's unknown),
+//     a fixed pressure, a compliance (p = V/C), a time-varying elastance
+//     (p = E(t)(V − V0), TimeVaryingElastance.h) or a junction (no volume: flows balance);
+//   connections: a resistor Q = Δp/R, a valve (smooth diode, smooth_valve.h) or an
+//     inertance L dQ/dt = Δp − R Q.
+// Each step [t_n, t_{n+1}] is backward Euler: given the cavity pressures p at t_{n+1},
+// every internal unknown y (compartment volumes, junction pressures, inertance flows) is
+// solved implicitly,
+//   V_k − V_k,n − Δt Σ_e ±Q_e(y, p) = 0,   Δt Σ_e ±Q_e = 0 (junctions),
+//   L (Q_e − Q_e,n) + Δt (R Q_e − Δp_e) = 0 (inertances),
+// by a dense Newton, and each cavity's net inflow Q_net,c(p) = Q_in,c − Q_out,c follows,
+// with its exact Jacobian ∂Q_net/∂p = ∂Q/∂p − ∂Q/∂y (∂r/∂y)⁻¹ ∂r/∂p (implicit function
+// theorem on the converged update). The wall model then enforces
+//   V_wall,c(ū) − V_c,n − Δt Q_net,c(p) = 0.
+// After the Newton solve every volume is updated once more from the converged flows,
+// V_k = V_k,n + Δt Σ_e ±Q_e, so a closed network conserves the total blood volume
+// (compartments + cavities) to round-off, whatever the Newton tolerance.
+//
+// Like a cell model (common/cellmodels/CellModel.h), a Circulation owns no state: the
+// owner keeps the committed state (state_size() doubles), passes it to step(), and
+// commits, rolls back or serializes the current one. step() is deterministic.
+//
+// Units: pressure Pa, volume mm³, time s, flow mm³/s, resistance Pa·s/mm³, compliance
+// mm³/Pa, elastance Pa/mm³, inertance Pa·s²/mm³.
+#include "common/circulation/TimeVaryingElastance.h"
+#include "common/circulation/smooth_valve.h"
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+/// What one step gives the wall model, and what it reports.
+struct CavityFlows {
+  int n = 0;                          ///< number of cavities
+  std::vector<double> Q_net;          ///< per cavity: Q_in − Q_out at t_{n+1} (mm³/s)
+  std::vector<double> dQ_dp;          ///< n × n row-major: ∂Q_net,i/∂p_j (mm³/(s·Pa))
+  std::vector<double> Q_in, Q_out;    ///< per cavity: through its inflow / outflow valve
+  std::vector<bool> inflow_open, outflow_open;  ///< Δp > 0 across the valve
+  std::vector<std::string> phase;     ///< per cavity, Circulation::phase()
+  std::vector<double> pressures;      ///< per compartment (compartment_names()), Pa
+  std::vector<double> volumes;        ///< per compartment, mm³ (0 for fixed and junctions)
+  std::vector<double> flows;          ///< per connection (connection_names()), mm³/s
+  int newton_iterations = 0;          ///< of the internal solve
+  double dQ(int i, int j) const { return dQ_dp[static_cast<size_t>(i * n + j)]; }
+};
+
+class Circulation {
+ public:
+  // --- Building the network (circulation_factory.cpp; tests).
+  enum class NodeKind { cavity, fixed, compliance, elastance, junction };
+  enum class LinkKind { resistor, valve, inertance };
+  struct Node {
+    std::string name;
+    NodeKind kind = NodeKind::fixed;
+    double pressure = 0.0;        ///< fixed: its pressure; compliance, junction: initial p
+    double compliance = 0.0;      ///< compliance: C (mm³/Pa)
+    TimeVaryingElastance elastance;  ///< elastance: E(t), V0, V_init
+    int cavity = -1;              ///< cavity: its index
+  };
+  struct Link {
+    std::string name;
+    int from = -1, to = -1;       ///< node indices; Q > 0 flows from → to
+    LinkKind kind = LinkKind::resistor;
+    double R = 0.0;               ///< resistor, inertance (Pa·s/mm³)
+    double L = 0.0;               ///< inertance (Pa·s²/mm³), > 0
+    ValveParameters valve;
+  };
+
+  /// `cavity_names` in order; each cavity needs a node of kind cavity and its inflow and
+  /// outflow valves (link indices) for the phase.
+  Circulation(std::string kind, std::vector<std::string> cavity_names, std::vector<Node> nodes,
+              std::vector<Link> links, std::vector<int> inflow_valve,
+              std::vector<int> outflow_valve, double period, std::string description);
+
+  // --- The coupling interface.
+  int cavities() const { return static_cast<int>(cavity_names_.size()); }
+  const std::vector<std::string>& cavity_names() const { return cavity_names_; }
+  /// Doubles of state: the internal unknowns, then the cavity pressures of the last step
+  /// (for the phase's sign of dp).
+  int state_size() const { return unknowns_ + cavities(); }
+  /// Initial compartment volumes and pressures from the spec; inertance flows 0.
+  void initial_state(std::span<double> state) const;
+  /// One backward-Euler step to t_new = t_n + dt at cavity pressures p_cav (Pa):
+  /// reads `committed`, writes `current` (both state_size()). Throws NumericalError
+  /// naming the compartment if the internal Newton fails.
+  CavityFlows step(double t_new, double dt, std::span<const double> p_cav,
+                   std::span<const double> committed, std::span<double> current) const;
+  /// "filling" (inflow valve open), "ejection" (outflow valve open), "isovolumic
+  /// contraction" / "isovolumic relaxation" (both closed; dp ≥ 0 / dp < 0 over the step),
+  /// "both valves open" (never in a sane circulation).
+  static std::string phase(bool inflow_open, bool outflow_open, double dp);
+  /// Sets the cavity pressures of the last step in `state` (the owner's initial
+  /// pressures, so the first step's phase sees the right sign of dp).
+  void set_cavity_pressures(std::span<double> state, std::span<const double> p_cav) const;
+  /// Heart period of its time-varying elastances (s).
+  double period() const { return period_; }
+  /// Blood held by the compartments of `state` (mm³; cavities excluded).
+  double blood_volume(std::span<const double> state) const;
+  /// True if no fixed-pressure compartment: blood volume is then conserved.
+  bool closed() const;
+  /// "windkessel" or "closed_loop".
+  const std::string& kind() const { return kind_; }
+  /// One line with the model and the parameter values that matter (logged).
+  const std::string& description() const { return description_; }
+
+  // --- Reporting.
+  std::vector<std::string> compartment_names() const;
+  std::vector<std::string> connection_names() const;
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<Link>& links() const { return links_; }
+
+ private:
+  struct Evaluation;
+  void evaluate(double t, double dt, std::span<const double> p_cav, std::span<const double> y_n,
+                std::span<const double> y, Evaluation& e) const;
+  double node_pressure(int k, double t, std::span<const double> p_cav,
+                       std::span<const double> y) const;
+
+  std::string kind_;
+  std::vector<std::string> cavity_names_;
+  std::vector<Node> nodes_;
+  std::vector<Link> links_;
+  std::vector<int> inflow_valve_, outflow_valve_;
+  double period_ = 0.0;
+  std::string description_;
+  std::vector<int> node_unknown_;   ///< per node: its unknown (V or p) or -1
+  std::vector<int> link_unknown_;   ///< per link: its unknown (Q) or -1
+  std::vector<std::string> unknown_name_;
+  int unknowns_ = 0;
+};
+
+using CirculationPtr = std::shared_ptr<const Circulation>;
+
+}  // namespace fe2
