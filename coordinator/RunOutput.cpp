@@ -175,6 +175,12 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
       hist.back()["cavity_volumes"] = cav;
     }
     if (!h.load_pressures.empty()) hist.back()["load_pressures"] = h.load_pressures;
+    if (!h.probes.empty()) {
+      json at = json::object();
+      for (size_t p = 0; p < h.probes.size(); ++p)
+        at[sim.spec().probes[p].first] = {h.probes[p][0], h.probes[p][1], h.probes[p][2]};
+      hist.back()["probes"] = at;
+    }
     gmres += h.gmres_iterations;
     refreshes += h.refreshes;
     micro_cpu += h.micro_cpu_seconds;

@@ -440,6 +440,7 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     }
     rec.time = t_n_;
     rec.cavity_volumes = cavity_volumes();
+    for (const auto& probe : spec_.probes) rec.probes.push_back(deformed_position(probe.second));
     for (const auto& ps : spec_.pressure) rec.load_pressures.push_back(ps.value * ramp_factor(ps.ramp, t_n_, spec_.t_end));
     rec.wall_seconds = wall_seconds() - t0;
     result.newton_iterations += rec.iterations;

@@ -43,6 +43,7 @@ struct StepRecord {
   double micro_cpu_seconds = 0.0;
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
   std::vector<double> load_pressures;   ///< per spec.pressure, at the end of the step
+  std::vector<Vec3> probes;             ///< per spec.probes, deformed position at the end of the step
 };
 
 struct RunResult {

@@ -1,5 +1,6 @@
 // `fe2heart run`: every rank reads the spec; ranks agree on protocol and spec; the
 // first n_c ranks coordinate (macro problem, MUMPS), the worker ranks hold units.
+#include "common/circulation/circulation_run_spec.h"
 #include "common/cpu_timer.h"
 #include "common/io/atomic_file.h"
 #include "coordinator/FarmEvaluator.h"
@@ -125,6 +126,7 @@ std::string format_duration(double s) {
 int validate(const std::string& file, const std::string& memory_limit_text) {
   const MemoryLimit limit = memory_limit(memory_limit_text);
   const json j = read_json_file(file);
+  if (is_circulation_run_spec(j)) return validate_circulation(file);
   if (j.is_object() && j.contains("unit") && !j.contains("mesh")) {
     const UnitSpec u = read_unit_spec(j, file, nullptr, false);
     check_unit_memory(*u.plan, 1, limit);
@@ -213,6 +215,13 @@ int run(const RunOptions& o) {
       log_open = true;
       spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
       spdlog::info("{}", describe(spec));
+      for (const auto& m : spec.models) {
+        if (m.material) spdlog::info("model {}: {}", m.name, m.material->description());
+        if (m.plan)
+          for (size_t r = 0; r < m.plan->materials.size(); ++r)
+            spdlog::info("model {}, unit region {}: {}", m.name, m.plan->region_names[r],
+                         m.plan->materials[r]->description());
+      }
       spdlog::info("{} ranks: {} coordinator(s), {} worker rank(s), policy {}", layout.ranks,
                    layout.coordinators, layout.worker_ranks.size(),
                    FarmOptions::name_of(spec.farm.policy));

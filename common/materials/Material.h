@@ -23,6 +23,9 @@ class Material {
   /// Short model name as written in specs, e.g. "neo_hookean".
   virtual std::string name() const = 0;
 
+  /// One line for the log: the model and what it adds (cell model, parameter set, ...).
+  virtual std::string description() const { return name(); }
+
   /// Strain energy per unit reference volume, W(Z).
   virtual double energy(const Vec9& Z) const = 0;
 

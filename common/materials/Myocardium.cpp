@@ -3,12 +3,22 @@
 #include "common/materials/active_stress.h"
 #include "common/materials/kelvin_voigt.h"
 
+#include <spdlog/fmt/fmt.h>
+
 namespace fe2 {
 
 Myocardium::Myocardium(MaterialPtr passive, MyocardiumOptions options)
     : passive_(std::move(passive)), options_(std::move(options)) {
   passive_history_ = passive_->history_size();
   cell_history_ = options_.cell ? options_.cell->state_size() : 0;
+}
+
+std::string Myocardium::description() const {
+  std::string d = passive_->description();
+  if (options_.cell)
+    d += fmt::format(" + active stress (n_t = {}): {}", options_.transverse_fraction, options_.cell->description());
+  if (options_.viscosity > 0.0) d += fmt::format(" + viscosity eta = {} Pa s", options_.viscosity);
+  return d;
 }
 
 bool Myocardium::major_symmetric() const {

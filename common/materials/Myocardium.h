@@ -25,6 +25,7 @@ class Myocardium final : public Material {
   Myocardium(MaterialPtr passive, MyocardiumOptions options);
 
   std::string name() const override { return passive_->name(); }
+  std::string description() const override;
   /// The passive energy (active and viscous stresses have no potential).
   double energy(const Vec9& Z) const override { return passive_->energy(Z); }
   /// Without a context: the resting, still material (the passive law alone).

@@ -3,7 +3,12 @@
 #include "coordinator/RunSpec.h"
 #include "coordinator/Simulation.h"
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
 
 namespace fe2::test {
 
@@ -39,6 +44,19 @@ inline json beam(const json& model, int steps = 3, double pressure = 60.0) {
           {"newton", {{"rtol", 1e-11}, {"micro_rtol", 1e-11}, {"max_iterations", 40}}},
           {"probes", {{"tip", {2, 0.5, 0.5}}, {"mid", {1, 0.2, 0.7}}}},
           {"output", {{"vtu", false}}}};
+}
+
+/// Newton iterations of one step in the asymptotic range (below 1e-2, and the next above
+/// the round-off floor) must at least nearly square the residual: log r_{k+1}/log r_k > 1.8.
+/// Returns how many were checked (gtest expectations inside).
+inline int expect_quadratic_iterations(const std::vector<double>& res, const std::string& where) {
+  int checked = 0;
+  for (size_t k = 1; k + 1 < res.size(); ++k) {
+    if (res[k] > 1e-2 || res[k + 1] < 1e-13) continue;
+    EXPECT_GT(std::log(res[k + 1]) / std::log(res[k]), 1.8) << where << ": " << res[k] << " -> " << res[k + 1];
+    ++checked;
+  }
+  return checked;
 }
 
 struct SceneRun {

@@ -16,15 +16,8 @@ using test::run_scene;
 /// next above the round-off floor) must at least nearly square the residual.
 void expect_quadratic(const RunResult& r) {
   int checked = 0;
-  for (const auto& step : r.history) {
-    const auto& res = step.residuals;
-    for (size_t k = 1; k + 1 < res.size(); ++k) {
-      if (res[k] > 1e-2 || res[k + 1] < 1e-13) continue;
-      EXPECT_GT(std::log(res[k + 1]) / std::log(res[k]), 1.8)
-          << "step " << step.step << ": " << res[k] << " -> " << res[k + 1];
-      ++checked;
-    }
-  }
+  for (const auto& step : r.history)
+    checked += test::expect_quadratic_iterations(step.residuals, "step " + std::to_string(step.step));
   EXPECT_GT(checked, 0) << "no iteration in the asymptotic range was seen";
 }
 
