@@ -32,6 +32,17 @@ struct BenchOptions {
 };
 int bench_unit(const BenchOptions& o);
 
+struct CirculationOptions {
+  std::string spec;
+  std::string out;
+};
+/// A 0D circulation alone with elastance ventricles (tools/cmd_circulation.cpp).
+int circulation(const CirculationOptions& o);
+/// `validate` of a standalone circulation spec.
+int validate_circulation(const std::string& spec);
+/// JSON Schema 2020-12 of standalone circulation specs (`spec-schema --circulation`).
+int spec_schema_circulation();
+
 /// Every spec key (from the schema): type, default or "required", range, help.
 int spec_doc();
 /// JSON Schema 2020-12 of a run spec, or of a unit spec with `unit`.

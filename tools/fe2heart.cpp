@@ -55,6 +55,16 @@ int main(int argc, char** argv) {
   auto* c_schema = app.add_subcommand("spec-schema", "the spec schema as JSON Schema 2020-12 "
                                                      "(for editors and validators)");
   c_schema->add_flag("--unit", schema_unit, "the schema of unit specs (default: run specs)");
+  bool schema_circulation = false;
+  c_schema->add_flag("--circulation", schema_circulation,
+                     "the schema of standalone circulation specs (fe2heart circulation)");
+
+  fe2::cli::CirculationOptions circulation;
+  auto* c_circulation = app.add_subcommand(
+      "circulation", "a 0D circulation alone, elastance ventricles standing in for the wall: "
+                     "writes DIR/circulation.csv, summary.json (EDV, ESV, SV, EF, ...) and pv_loop.png");
+  c_circulation->add_option("spec", circulation.spec, "circulation spec (JSON)")->required();
+  c_circulation->add_option("--out", circulation.out, "output folder")->required();
 
   fe2::cli::BenchOptions bench;
   auto* c_bench = app.add_subcommand("bench", "benchmarks that print figures (not tests)");
@@ -130,7 +140,9 @@ int main(int argc, char** argv) {
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);
     else if (*c_doc) rc = fe2::cli::spec_doc();
+    else if (*c_schema && schema_circulation) rc = fe2::cli::spec_schema_circulation();
     else if (*c_schema) rc = fe2::cli::spec_schema(schema_unit);
+    else if (*c_circulation) rc = fe2::cli::circulation(circulation);
   } catch (const fe2::Error& e) {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -14,8 +14,9 @@
 //    0, T_C = 0.34 T, T_R = 0.17 T) at T = 0.8 s;
 //  - the 3-element Windkessel: Westerhof, Lankhaar, Westerhof 2009, "The arterial
 //    Windkessel", Med Biol Eng Comput 47:131–141 (human aorta: Z_c ≈ 0.05 mmHg·s/mL,
-//    R_p ≈ 1 mmHg·s/mL, C ≈ 1.5 mL/mmHg); the pulmonary one from Regazzoni 2022's
-//    pulmonary resistances and compliance.
+//    C ≈ 1.5 mL/mmHg) with Regazzoni 2022's systemic arterial resistance R_p = 0.8
+//    mmHg·s/mL (R_p C = 1.2 s); the pulmonary one from Regazzoni 2022's pulmonary
+//    resistances and compliance.
 #include "common/circulation/TimeVaryingElastance.h"
 #include "common/circulation/smooth_valve.h"
 #include "common/spec/SpecNode.h"
@@ -86,7 +87,9 @@ inline const std::vector<Key<ValveParameters>>& valve_keys() {
   };
   return k;
 }
-inline ValveParameters default_valve() { return {0.0075 * kR, 75006.2 * kR, 10.0}; }
+/// Regazzoni's R_min = 0.0075 and R_max = 75006.2 mmHg·s/mL are 1e-3 and 1e4 Pa·s/mm³
+/// (to 1e-4 relative): the round values are the defaults.
+inline ValveParameters default_valve() { return {1e-3, 1e4, 10.0}; }
 inline const char* const kInflowValveHelp = "inflow valve (mitral for lv, tricuspid for rv)";
 inline const char* const kOutflowValveHelp = "outflow valve (aortic for lv, pulmonary for rv)";
 
@@ -108,18 +111,19 @@ inline const std::vector<Key<ElastanceParameters>>& elastance_keys() {
   };
   return k;
 }
-/// Regazzoni 2022 (EB = E_min, EA = E_max − E_min), timings at T = 0.8 s.
+/// Regazzoni 2022 (EB = E_min, EA = E_max − E_min); timings at T = 0.8 s (onset 0.8 T,
+/// T_C = T_R = 0.17 T for the atria; 0, 0.34 T, 0.17 T for the ventricles).
 inline ElastanceParameters left_atrium() {
-  return {0.09 * kR, 0.16 * kR, 4.0 * kMl, 65.0 * kMl, 0.8 * kPeriod, 0.17 * kPeriod, 0.17 * kPeriod};
+  return {0.09 * kR, 0.16 * kR, 4.0 * kMl, 65.0 * kMl, 0.64, 0.136, 0.136};
 }
 inline ElastanceParameters right_atrium() {
-  return {0.07 * kR, 0.13 * kR, 4.0 * kMl, 65.0 * kMl, 0.8 * kPeriod, 0.17 * kPeriod, 0.17 * kPeriod};
+  return {0.07 * kR, 0.13 * kR, 4.0 * kMl, 65.0 * kMl, 0.64, 0.136, 0.136};
 }
 inline ElastanceParameters left_ventricle() {
-  return {0.08 * kR, 2.83 * kR, 5.0 * kMl, 120.0 * kMl, 0.0, 0.34 * kPeriod, 0.17 * kPeriod};
+  return {0.08 * kR, 2.83 * kR, 5.0 * kMl, 120.0 * kMl, 0.0, 0.272, 0.136};
 }
 inline ElastanceParameters right_ventricle() {
-  return {0.05 * kR, 0.60 * kR, 10.0 * kMl, 145.0 * kMl, 0.0, 0.34 * kPeriod, 0.17 * kPeriod};
+  return {0.05 * kR, 0.60 * kR, 10.0 * kMl, 145.0 * kMl, 0.0, 0.272, 0.136};
 }
 
 // --- Windkessel kind: preload and the 3-element Windkessel of one cavity.
@@ -172,8 +176,8 @@ inline const std::vector<Key<WindkesselParameters>>& windkessel_keys() {
        "characteristic impedance Z_c (Pa s/mm^3); default lv 0.05 mmHg s/mL (Westerhof 2009), "
        "rv 0.01 mmHg s/mL"},
       {"Rp", &P::Rp, Range::positive(),
-       "peripheral resistance R_p (Pa s/mm^3); default lv 1.0 mmHg s/mL (Westerhof 2009), rv "
-       "0.15 mmHg s/mL (Regazzoni 2022 R_AR + R_VEN pulmonary less Z_c)"},
+       "peripheral resistance R_p (Pa s/mm^3); default lv 0.8 mmHg s/mL (Regazzoni 2022 "
+       "R_AR systemic), rv 0.15 mmHg s/mL (Regazzoni 2022 pulmonary R_AR + R_VEN, less Z_c)"},
       {"C", &P::C, Range::positive(),
        "arterial compliance C (mm^3/Pa); default lv 1.5 mL/mmHg (Westerhof 2009), rv 10 "
        "mL/mmHg (Regazzoni 2022 C_AR pulmonary)"},
@@ -184,7 +188,7 @@ inline const std::vector<Key<WindkesselParameters>>& windkessel_keys() {
   return k;
 }
 inline WindkesselParameters lv_windkessel() {
-  return {0.05 * kR, 1.0 * kR, 1.5 * kC, 5.0 * kMmHg, 80.0 * kMmHg};
+  return {0.05 * kR, 0.8 * kR, 1.5 * kC, 5.0 * kMmHg, 80.0 * kMmHg};
 }
 inline WindkesselParameters rv_windkessel() {
   return {0.01 * kR, 0.15 * kR, 10.0 * kC, 8.0 * kMmHg, 15.0 * kMmHg};

@@ -12,6 +12,7 @@ namespace {
 using namespace circulation_keys;
 
 const char* const kTitleHelp = "one line saying what this circulation run shows";
+const char* const kDescriptionHelp = "what the run shows and how to view it";
 const char* const kTimeHelp =
     "how long to run: whole beats of the circulation's period, or t_end seconds";
 const char* const kBeatsHelp = "number of heart beats (give beats or t_end)";
@@ -33,6 +34,7 @@ const SchemaNode& circulation_run_schema() {
   static const Schema s = object(
       true, "a standalone circulation run (fe2heart circulation)",
       {{"title", string("", kTitleHelp)},
+       {"description", string("", kDescriptionHelp)},
        {"circulation", [] {
           auto c = std::make_shared<SchemaNode>(*circulation_schema());
           c->required = true;
@@ -66,6 +68,7 @@ CirculationRunSpec read_circulation_run_spec(const json& j, const std::string& f
   CirculationRunSpec spec;
   try {
     spec.title = root.string("title", "", kTitleHelp);
+    root.string("description", "", kDescriptionHelp);
     SpecNode circ = root.child("circulation", true, kCirculationHelp);
     spec.circulation = make_circulation(circ);
     const double period = spec.circulation->period();

@@ -48,11 +48,14 @@ def load_schema(*flags):
     return schema
 
 
-schemas = {"run": load_schema(), "unit": load_schema("--unit")}
+schemas = {"run": load_schema(), "unit": load_schema("--unit"),
+           "circulation": load_schema("--circulation")}
 validators = {k: jsonschema.Draft202012Validator(s) for k, s in schemas.items()}
 
 
 def kind_of(spec):
+    if "ventricles" in spec or ("circulation" in spec and "mesh" not in spec):
+        return "circulation"  # fe2heart circulation (common/circulation/circulation_run_spec.h)
     return "unit" if "unit" in spec and "mesh" not in spec else "run"
 
 

@@ -3,6 +3,7 @@
 // the schema that spec-doc and spec-schema print is exactly what the reader accepts.
 // The specs read: every shipped config, the exemplars in tests/data/schema/ (written to
 // cover every branch) and the positive controls of the CLI tests.
+#include "common/circulation/circulation_run_spec.h"
 #include "common/spec/SchemaNode.h"
 #include "common/spec/spec_schemas.h"
 #include "coordinator/RunSpec.h"
@@ -50,12 +51,15 @@ void unvisited(const SchemaNode& n, const std::string& path, const SpecDoc& doc,
 
 TEST(SpecSchemaCoverage, EveryKeyOfBothSchemasIsReadByTheReaders) {
   SpecDoc doc;
-  int run = 0, unit = 0;
+  int run = 0, unit = 0, circulation = 0;
   for (const auto& f : specs_to_read()) {
     SCOPED_TRACE(f);
     const json j = read_json_file(f);
     // Throws (failing the test) if the reader reads a key the schema does not declare.
-    if (is_unit_spec(j)) {
+    if (is_circulation_run_spec(j)) {
+      read_circulation_run_spec(j, f, &doc);
+      ++circulation;
+    } else if (is_unit_spec(j)) {
       cli::read_unit_spec(j, f, &doc);
       ++unit;
     } else {
@@ -65,10 +69,12 @@ TEST(SpecSchemaCoverage, EveryKeyOfBothSchemasIsReadByTheReaders) {
   }
   EXPECT_GE(run, 5);
   EXPECT_GE(unit, 3);
+  EXPECT_GE(circulation, 4);
   std::vector<std::string> missing;
   std::set<const SchemaNode*> seen;
   unvisited(run_spec_schema(), "", doc, missing, seen);
   unvisited(unit_spec_schema(), "(unit spec)", doc, missing, seen);
+  unvisited(circulation_run_schema(), "(circulation spec)", doc, missing, seen);
   EXPECT_TRUE(missing.empty())
       << "schema keys the readers never declared while reading every spec (a branch no spec "
          "selects: add it to an exemplar in tests/data/schema/; or a key the reader does not "

@@ -1,0 +1,151 @@
+// `fe2heart circulation SPEC --out DIR`: a 0D circulation run alone, time-varying
+// elastance ventricles standing in for the wall (common/circulation/). Writes
+// DIR/circulation.csv (every step), DIR/summary.json (per cavity EDV, ESV, SV, EF, peak
+// pressure, dP/dt, stroke work; blood volume and its drift) and DIR/pv_loop.png.
+#include "common/circulation/beat_summary.h"
+#include "common/circulation/circulation_run.h"
+#include "common/circulation/circulation_run_spec.h"
+#include "common/io/atomic_file.h"
+#include "common/spec/json_schema.h"
+#include "tools/commands.h"
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+namespace fe2::cli {
+namespace {
+
+std::string csv(const CirculationRunSpec& spec, const std::vector<CirculationSample>& run) {
+  const Circulation& c = *spec.circulation;
+  std::string out = "t";
+  for (const auto& n : c.cavity_names())
+    out += fmt::format(",p_{0},V_{0},Q_in_{0},Q_out_{0},Q_net_{0},phase_{0}", n);
+  // Every compartment's pressure and every connection's flow ("p:lv.arterial", "Q:lv.Zc").
+  for (const auto& n : c.compartment_names()) out += ",p:" + n;
+  for (const auto& n : c.connection_names()) out += ",Q:" + n;
+  out += ",blood_volume\n";
+  const size_t nodes = c.compartment_names().size(), links = c.connection_names().size();
+  for (const auto& s : run) {
+    const bool flows = !s.flows.Q_net.empty();
+    out += fmt::format("{:.9g}", s.t);
+    for (int k = 0; k < c.cavities(); ++k)
+      out += fmt::format(",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}", s.p[k], s.V[k],
+                         flows ? s.flows.Q_in[k] : 0.0, flows ? s.flows.Q_out[k] : 0.0,
+                         flows ? s.flows.Q_net[k] : 0.0, flows ? s.flows.phase[k] : "initial");
+    for (size_t k = 0; k < nodes; ++k) out += flows ? fmt::format(",{:.10g}", s.flows.pressures[k]) : ",";
+    for (size_t k = 0; k < links; ++k) out += flows ? fmt::format(",{:.10g}", s.flows.flows[k]) : ",";
+    out += fmt::format(",{:.17g}\n", s.blood_volume);
+  }
+  return out;
+}
+
+json summary(const CirculationRunSpec& spec, const std::vector<CirculationSample>& run, double seconds) {
+  const Circulation& c = *spec.circulation;
+  const int per_beat = spec.beats ? spec.steps / spec.beats : spec.steps;
+  // The window of the figures: the last whole beat, or the whole run.
+  const size_t last = run.size() - 1, first = spec.beats ? last - per_beat : 0;
+  std::vector<double> t;
+  for (const auto& s : run) t.push_back(s.t);
+  json cav = json::object();
+  for (int k = 0; k < c.cavities(); ++k) {
+    std::vector<double> p, V;
+    for (const auto& s : run) p.push_back(s.p[k]), V.push_back(s.V[k]);
+    const BeatFigures b = beat_figures(t, p, V, first, last);
+    json edv = json::array();
+    for (int beat = 0; beat < spec.beats; ++beat)
+      edv.push_back(beat_figures(t, p, V, beat * per_beat, (beat + 1) * per_beat).EDV);
+    json j = {{"EDV", b.EDV},
+              {"ESV", b.ESV},
+              {"SV", b.SV},
+              {"EF", b.EF},
+              {"peak_pressure", b.peak_pressure},
+              {"dpdt_max", b.dpdt_max},
+              {"dpdt_min", b.dpdt_min},
+              {"stroke_work", b.stroke_work},
+              {"stroke_work_J", b.stroke_work * 1e-9},
+              {"EDV_per_beat", edv}};
+    if (spec.beats >= 2)
+      j["EDV_change_last_beat"] = std::abs(edv[spec.beats - 1].get<double>() - edv[spec.beats - 2].get<double>()) /
+                                  edv[spec.beats - 1].get<double>();
+    cav[c.cavity_names()[k]] = j;
+  }
+  double drift = 0.0;
+  int max_it = 0;
+  for (const auto& s : run) {
+    drift = std::max(drift, std::abs(s.blood_volume - run.front().blood_volume));
+    max_it = std::max(max_it, s.newton_iterations);
+  }
+  return {{"title", spec.title},
+          {"complete", true},
+          {"circulation", c.description()},
+          {"units", {{"pressure", "Pa"}, {"volume", "mm^3"}, {"time", "s"}, {"flow", "mm^3/s"},
+                     {"stroke_work", "Pa mm^3 (1e-9 J)"}}},
+          {"steps", spec.steps},
+          {"dt", spec.dt()},
+          {"t_end", spec.t_end},
+          {"beats", spec.beats},
+          {"figures_over", spec.beats ? "the last beat" : "the whole run"},
+          {"cavities", cav},
+          {"blood_volume",
+           {{"initial", run.front().blood_volume},
+            {"final", run.back().blood_volume},
+            {"max_drift", drift},
+            {"max_relative_drift", drift / run.front().blood_volume},
+            {"conserved", c.closed()}}},
+          {"max_newton_iterations", max_it},
+          {"wall_seconds", seconds}};
+}
+
+}  // namespace
+
+int circulation(const CirculationOptions& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const json j = read_json_file(o.spec);
+  const CirculationRunSpec spec = read_circulation_run_spec(j, o.spec);
+  spdlog::info("{}", spec.circulation->description());
+  spdlog::info("{} steps of {:.4g} s to t = {} s", spec.steps, spec.dt(), spec.t_end);
+  std::error_code ec;
+  std::filesystem::create_directories(o.out, ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
+  const auto run = run_circulation(spec);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_file_atomically(o.out + "/circulation.csv", csv(spec, run));
+  const json s = summary(spec, run, seconds);
+  write_file_atomically(o.out + "/summary.json", s.dump(2) + "\n");
+  for (const auto& [name, c] : s["cavities"].items())
+    spdlog::info("{}: EDV {:.1f} mL, ESV {:.1f} mL, SV {:.1f} mL, EF {:.1f} %, peak {:.1f} kPa ({:.0f} mmHg), "
+                 "stroke work {:.3f} J", name, c["EDV"].get<double>() / 1e3, c["ESV"].get<double>() / 1e3,
+                 c["SV"].get<double>() / 1e3, 100 * c["EF"].get<double>(),
+                 c["peak_pressure"].get<double>() / 1e3, c["peak_pressure"].get<double>() / 133.322387415,
+                 c["stroke_work_J"].get<double>());
+  spdlog::info("blood volume drift {:.2e} (relative; {})", s["blood_volume"]["max_relative_drift"].get<double>(),
+               spec.circulation->closed() ? "closed loop: conserved" : "open: Windkessel drains");
+  // The picture; a missing matplotlib costs only the PNG.
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_LOOP_SCRIPT, o.out);
+  if (std::system(cmd.c_str()) != 0)
+    spdlog::warn("no pv_loop.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+  spdlog::info("results: {}/summary.json, {}/circulation.csv, {}/pv_loop.png ({:.2f} s)", o.out, o.out,
+               o.out, seconds);
+  return 0;
+}
+
+int validate_circulation(const std::string& file) {
+  const CirculationRunSpec spec = read_circulation_run_spec(read_json_file(file), file);
+  fmt::print("{}: OK: circulation spec, {} steps to t = {} s; {}\n", file, spec.steps, spec.t_end,
+             spec.circulation->description());
+  return 0;
+}
+
+int spec_schema_circulation() {
+  fmt::print("{}\n", to_json_schema(circulation_run_schema(), "urn:fe2heart:circulation-spec",
+                                    "fe2heart circulation spec (fe2heart circulation)")
+                          .dump(2));
+  return 0;
+}
+
+}  // namespace fe2::cli

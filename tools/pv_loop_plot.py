@@ -1,0 +1,70 @@
+#!/usr/bin/python3
+"""Pressure–volume loops of a standalone circulation run (`fe2heart circulation`).
+
+Reads RUN_DIR/circulation.csv and draws RUN_DIR/pv_loop.png: left, each cavity's
+pressure against volume (earlier beats faint, the last beat bold); right, cavity and
+arterial pressures against time. Needs Debian's python3-matplotlib.
+
+    /usr/bin/python3 tools/pv_loop_plot.py RUN_DIR [--out FILE]
+"""
+import argparse
+import csv
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MMHG = 133.322387415  # Pa
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run_dir")
+    ap.add_argument("--out", default=None, help="PNG file (default RUN_DIR/pv_loop.png)")
+    a = ap.parse_args()
+    path = os.path.join(a.run_dir, "circulation.csv")
+    try:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        with open(os.path.join(a.run_dir, "summary.json")) as f:
+            summary = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"pv_loop_plot: cannot read {a.run_dir}: {e}")
+    cavities = list(summary["cavities"])
+    t = [float(r["t"]) for r in rows]
+    beats, steps = summary["beats"], summary["steps"]
+    start = len(rows) - 1 - (steps // beats if beats else steps)  # the last beat's first row
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
+    for name in cavities:
+        V = [float(r[f"V_{name}"]) / 1000.0 for r in rows]
+        p = [float(r[f"p_{name}"]) / MMHG for r in rows]
+        line, = ax.plot(V[start:], p[start:], lw=2, label=f"{name} (last beat)")
+        if start > 0:
+            ax.plot(V[: start + 1], p[: start + 1], lw=0.7, alpha=0.35, color=line.get_color())
+        bx.plot(t, p, lw=1.2, color=line.get_color(), label=f"p {name}")
+    for key in rows[0]:
+        if key.startswith("p:") and (key.endswith(".proximal") or key.endswith("_arteries")):
+            bx.plot(t, [float(r[key]) / MMHG if r[key] else float("nan") for r in rows], lw=0.9,
+                    ls="--", label=key[2:])
+    ax.set_xlabel("volume (mL)")
+    ax.set_ylabel("pressure (mmHg)")
+    ax.set_title("pressure–volume loop", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    bx.set_xlabel("time (s)")
+    bx.set_ylabel("pressure (mmHg)")
+    bx.set_title(summary.get("title", "")[:70], fontsize=9)
+    bx.grid(alpha=0.3)
+    bx.legend(fontsize=7)
+    fig.tight_layout()
+    out = a.out or os.path.join(a.run_dir, "pv_loop.png")
+    fig.savefig(out, dpi=110)
+    print(f"wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
