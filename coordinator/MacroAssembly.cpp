@@ -17,13 +17,13 @@ void MacroAssembly::clear() {
 void MacroAssembly::add_tangent(int block, const Eigen::MatrixXd& K) {
   system_.add(block, K, values_);
   if (!lift_) return;
-  const auto& dofs = system_.block_dofs(block);
-  const int n = static_cast<int>(dofs.size());
-  for (int c = 0; c < n; ++c) {
-    const double du = (*lift_)[dofs[c]];
+  const auto& rows = system_.block_rows(block);
+  const auto& cols = system_.block_cols(block);
+  for (size_t c = 0; c < cols.size(); ++c) {
+    const double du = (*lift_)[cols[c]];
     if (du == 0.0) continue;
-    for (int r = 0; r < n; ++r)
-      if (system_.eq(dofs[r]) >= 0) rhs_[system_.eq(dofs[r])] -= K(r, c) * du;
+    for (size_t r = 0; r < rows.size(); ++r)
+      if (system_.eq(rows[r]) >= 0) rhs_[system_.eq(rows[r])] -= K(r, c) * du;
   }
 }
 

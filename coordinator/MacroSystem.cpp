@@ -11,7 +11,8 @@ MacroSystem::MacroSystem(const RunSpec& spec, bool pressure_field)
     for (size_t j = 0; j < vertex_of_pressure_.size(); ++j)
       pressure_of_node_[vertex_of_pressure_[j]] = static_cast<int>(j);
   }
-  num_dofs_ = 3 * num_nodes_ + num_pressure();
+  num_cavities_ = static_cast<int>(spec.coupled_cavities.size());
+  num_dofs_ = 3 * num_nodes_ + num_pressure() + num_cavities_;
   // Prescribed DOFs; a later condition on the same DOF overrides an earlier one.
   std::vector<int> source(num_dofs_, -1);
   for (size_t d = 0; d < spec.dirichlet.size(); ++d)
@@ -36,10 +37,15 @@ double MacroSystem::prescribed_value(size_t k, double t) const {
 }
 
 int MacroSystem::declare_block(std::vector<int> dofs) {
+  std::vector<int> cols = dofs;
+  return declare_block(std::move(dofs), std::move(cols));
+}
+
+int MacroSystem::declare_block(std::vector<int> row_dofs, std::vector<int> col_dofs) {
   Block b;
   b.first_slot = slot_.size();
-  for (int r : dofs)
-    for (int c : dofs) {
+  for (int r : row_dofs)
+    for (int c : col_dofs) {
       const int er = eq_[r], ec = eq_[c];
       if (er < 0 || ec < 0) {
         slot_.push_back(-1);
@@ -56,18 +62,19 @@ int MacroSystem::declare_block(std::vector<int> dofs) {
       }
       slot_.push_back(it->second);
     }
-  b.dofs = std::move(dofs);
+  b.rows = std::move(row_dofs);
+  b.cols = std::move(col_dofs);
   blocks_.push_back(std::move(b));
   return static_cast<int>(blocks_.size()) - 1;
 }
 
 void MacroSystem::add(int block, const Eigen::MatrixXd& K, std::vector<double>& values) const {
   const Block& b = blocks_[block];
-  const int n = static_cast<int>(b.dofs.size());
+  const int nr = static_cast<int>(b.rows.size()), nc = static_cast<int>(b.cols.size());
   const int* slot = &slot_[b.first_slot];
-  for (int r = 0; r < n; ++r)
-    for (int c = 0; c < n; ++c)
-      if (slot[n * r + c] >= 0) values[slot[n * r + c]] += K(r, c);
+  for (int r = 0; r < nr; ++r)
+    for (int c = 0; c < nc; ++c)
+      if (slot[nc * r + c] >= 0) values[slot[nc * r + c]] += K(r, c);
 }
 
 }  // namespace fe2

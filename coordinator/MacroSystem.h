@@ -1,7 +1,7 @@
 #pragma once
 // The macro unknowns and the fixed triplet pattern of S̄ (Eq. 10) over several fields:
 //   [ ū : 3 per mesh node (node-major 3a + i) | p : 1 per vertex, when the formulation
-//     has a pressure field | later: cavity pressures, fluid ]
+//     has a pressure field | p_c : 1 per cavity coupled to a circulation | later: fluid ]
 // each field a contiguous range at its offset (MFEM's BlockOperator offsets). Dirichlet
 // DOFs of ū are eliminated: free DOFs get equation numbers, in DOF order.
 //
@@ -34,6 +34,9 @@ class MacroSystem {
   int pressure_dof(int node) const { return pressure_offset() + pressure_of_node_[node]; }
   /// Mesh node of pressure unknown j.
   int vertex_of_pressure(int j) const { return vertex_of_pressure_[j]; }
+  /// Cavity pressures (RunSpec::coupled_cavities order), after the pressure field.
+  int num_cavities() const { return num_cavities_; }
+  int cavity_dof(int c) const { return pressure_offset() + num_pressure() + c; }
 
   // --- equations
   int num_free() const { return num_free_; }
@@ -46,21 +49,25 @@ class MacroSystem {
   // --- pattern
   /// Declares a local block over `dofs`; returns its id. Before the first rows() call.
   int declare_block(std::vector<int> dofs);
-  const std::vector<int>& block_dofs(int block) const { return blocks_[block].dofs; }
+  /// A rectangular block: rows `row_dofs`, columns `col_dofs` (a cavity's border).
+  int declare_block(std::vector<int> row_dofs, std::vector<int> col_dofs);
+  const std::vector<int>& block_rows(int block) const { return blocks_[block].rows; }
+  const std::vector<int>& block_cols(int block) const { return blocks_[block].cols; }
   /// The pattern (0-based rows/cols of free equations), all blocks in declaration order.
   const std::vector<int>& rows() const { return rows_; }
   const std::vector<int>& cols() const { return cols_; }
-  /// Adds K (block DOFs x block DOFs) into `values` at the block's slots.
+  /// Adds K (block rows x block columns) into `values` at the block's slots.
   void add(int block, const Eigen::MatrixXd& K, std::vector<double>& values) const;
 
  private:
   struct Block {
-    std::vector<int> dofs;
+    std::vector<int> rows, cols;
     size_t first_slot = 0;  ///< into slot_
   };
   const RunSpec& spec_;
   int num_nodes_;
   int num_dofs_;
+  int num_cavities_ = 0;
   int num_free_ = 0;
   std::vector<int> eq_;
   std::vector<int> prescribed_;

@@ -175,6 +175,28 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
       hist.back()["cavity_volumes"] = cav;
     }
     if (!h.load_pressures.empty()) hist.back()["load_pressures"] = h.load_pressures;
+    if (!h.cavity_pressures.empty()) {
+      // Circulation-coupled cavities: pressure, phase, valve flows; the compartments.
+      const auto& names = sim.spec().circulation->cavity_names();
+      json cav = json::object();
+      const CavityFlows& f = h.circulation;
+      for (size_t c = 0; c < names.size(); ++c) {
+        json one = {{"pressure", h.cavity_pressures[c]}};
+        if (f.n > 0)
+          one.update({{"phase", f.phase[c]}, {"Q_in", f.Q_in[c]}, {"Q_out", f.Q_out[c]},
+                      {"inflow_open", static_cast<bool>(f.inflow_open[c])},
+                      {"outflow_open", static_cast<bool>(f.outflow_open[c])}});
+        cav[names[c]] = one;
+      }
+      hist.back()["circulation"] = cav;
+      hist.back()["cavity_residuals"] = h.cavity_residuals;
+      if (f.n > 0) {
+        json comp = json::object();
+        const auto cn = sim.spec().circulation->compartment_names();
+        for (size_t k = 0; k < cn.size() && k < f.pressures.size(); ++k) comp[cn[k]] = f.pressures[k];
+        hist.back()["compartment_pressures"] = comp;
+      }
+    }
     if (!h.probes.empty()) {
       json at = json::object();
       for (size_t p = 0; p < h.probes.size(); ++p)

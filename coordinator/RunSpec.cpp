@@ -1,6 +1,7 @@
 #include "coordinator/RunSpec.h"
 
 #include "common/activation/activation_spec.h"
+#include "common/circulation/circulation_factory.h"
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/box_mesh.h"
@@ -356,6 +357,32 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
     spec.cavities.emplace_back(it.key(), surface);
   }
   cavities.finish();
+
+  if (root.has("circulation")) {
+    SpecNode circ = root.child("circulation", false,
+                               "0D circulation coupled strongly to the cavities (their pressures become unknowns)");
+    spec.circulation = make_circulation(circ);
+    for (const std::string& name : spec.circulation->cavity_names()) {
+      int found = -1;
+      for (size_t c = 0; c < spec.cavities.size(); ++c)
+        if (spec.cavities[c].first == name) found = static_cast<int>(c);
+      if (found < 0) {
+        std::vector<std::string> known;
+        for (const auto& [n, _] : spec.cavities) known.push_back(n);
+        throw InputError(fmt::format(
+            "/circulation/cavities/{}: no cavity '{}' in /cavities (it has: {}); every cavity of the "
+            "circulation needs its bounding surface there",
+            name, name, known.empty() ? std::string("none") : fmt::format("{}", fmt::join(known, ", "))));
+      }
+      spec.coupled_cavities.push_back(found);
+    }
+    for (const auto& ps : spec.pressure)
+      for (int c : spec.coupled_cavities)
+        if (ps.surface == spec.cavities[c].second)
+          throw InputError(fmt::format("/pressure: a prescribed pressure on '{}', the surface of cavity '{}' "
+                                       "whose pressure the circulation sets; expected no /pressure entry there",
+                                       ps.surface, spec.cavities[c].first));
+  }
 
   SpecNode probes = root.child("probes", false, "named material points to report");
   for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {

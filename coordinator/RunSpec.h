@@ -7,6 +7,7 @@
 //   point models (FE² units or the macro law, per region), Dirichlet conditions,
 //   follower pressure, inertia (Newmark), probes.
 #include "common/activation/ActivationField.h"
+#include "common/circulation/Circulation.h"
 #include "common/fibres/frame_spec.h"
 #include "common/materials/Material.h"
 #include "common/mesh/TetMesh.h"
@@ -103,6 +104,10 @@ struct RunSpec {
 
   std::vector<std::pair<std::string, Vec3>> probes;
   std::vector<std::pair<std::string, std::string>> cavities;  ///< (name, bounding face)
+  /// The 0D circulation ("circulation"; null: none) and, per circulation cavity, its
+  /// index in `cavities`: those cavities' pressures are unknowns of the macro system.
+  std::shared_ptr<const Circulation> circulation;
+  std::vector<int> coupled_cavities;
   int output_every = 1;
   bool write_vtu = true;
 

@@ -1,5 +1,7 @@
 #include "coordinator/Simulation.h"
 
+#include "coordinator/CavityPressureTerm.h"
+
 #include "common/cpu_timer.h"
 #include "common/fem/lagrange_tet.h"
 #include "common/mesh/cavity_volume.h"
@@ -70,6 +72,11 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
     terms_.push_back(std::make_unique<InertiaTerm>(spec.mesh, owned_elements_, spec.density));
   if (!spec.pressure.empty())
     terms_.push_back(std::make_unique<FollowerPressureTerm>(spec, group_.rank(), group_.size()));
+  if (spec.circulation) {
+    auto term = std::make_unique<CavityPressureTerm>(spec, group_.rank() == 0);
+    cavity_term_ = term.get();
+    terms_.push_back(std::move(term));
+  }
   if (spec.formulation.mixed) {
     auto term = std::make_unique<IncompressibilityTerm>(spec.mesh, points_, owned_elements_, spec.formulation);
     incompressibility_ = term.get();
@@ -260,7 +267,12 @@ Simulation::Residual Simulation::converge(double t_new) {
     const auto Rp = (f_int - f_ext).tail(system_.num_pressure());
     res.volume = Rp.norm() / pressure_volumes_.norm();
   }
-  if (!std::isfinite(res.displacement) || !std::isfinite(res.volume))
+  for (int c = 0; c < system_.num_cavities(); ++c) {
+    // R_c has the units of volume: relative to the cavity's unloaded volume.
+    const int dof = system_.cavity_dof(c);
+    res.cavity = std::max(res.cavity, std::abs(f_int[dof] - f_ext[dof]) / cavity_term_->reference_volumes()[c]);
+  }
+  if (!std::isfinite(res.displacement) || !std::isfinite(res.volume) || !std::isfinite(res.cavity))
     throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g}", t_new));
   return res;
 }
@@ -345,7 +357,9 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
                     it, res.displacement,
                     system_.has_pressure() ? fmt::format(", |R_p|/V = {:.3e}", res.volume) : "",
                     res.micro);
+      if (system_.num_cavities() > 0) rec.cavity_residuals.push_back(res.cavity);
       converged = !first && res.displacement <= spec_.newton_rtol && res.volume <= spec_.newton_rtol &&
+                  res.cavity <= spec_.newton_rtol &&
                   res.micro <= spec_.micro_rtol;
       if (!converged) {
         ScopedWallTimer t(timing.solve);
@@ -441,6 +455,10 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     rec.time = t_n_;
     rec.cavity_volumes = cavity_volumes();
     for (const auto& probe : spec_.probes) rec.probes.push_back(deformed_position(probe.second));
+    if (cavity_term_) {
+      for (int c = 0; c < system_.num_cavities(); ++c) rec.cavity_pressures.push_back(x_[system_.cavity_dof(c)]);
+      rec.circulation = cavity_term_->flows();  // valid on the coordinator that assembles it
+    }
     for (const auto& ps : spec_.pressure) rec.load_pressures.push_back(ps.value * ramp_factor(ps.ramp, t_n_, spec_.t_end));
     rec.wall_seconds = wall_seconds() - t0;
     result.newton_iterations += rec.iterations;

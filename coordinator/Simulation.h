@@ -17,6 +17,7 @@
 #include "coordinator/MacroTerm.h"
 #include "coordinator/MumpsSolver.h"
 #include "coordinator/PointEvaluator.h"
+#include "common/circulation/Circulation.h"
 #include "coordinator/RunSpec.h"
 #include "coordinator/Trace.h"
 #include "coordinator/macro_terms.h"
@@ -28,6 +29,8 @@
 #include <vector>
 
 namespace fe2 {
+
+class CavityPressureTerm;
 
 struct StepRecord {
   int step = 0;
@@ -44,6 +47,9 @@ struct StepRecord {
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
   std::vector<double> load_pressures;   ///< per spec.pressure, at the end of the step
   std::vector<Vec3> probes;             ///< per spec.probes, deformed position at the end of the step
+  std::vector<double> cavity_residuals; ///< coupled: max_c |R_c| / V_c,ref per iteration (last substep)
+  std::vector<double> cavity_pressures; ///< coupled: p_c per circulation cavity, Pa
+  CavityFlows circulation;              ///< coupled: flows, valves, phases (on the assembling coordinator)
 };
 
 struct RunResult {
@@ -98,6 +104,8 @@ class Simulation {
   std::vector<double> cavity_volumes() const;
   /// Deformed position of a reference point inside the mesh.
   Vec3 deformed_position(const Vec3& X) const;
+  /// The circulation coupling, or null (no "circulation" in the spec).
+  const CavityPressureTerm* cavity_term() const { return cavity_term_; }
 
   /// One Newton solve from the committed state to time t_new; true if converged.
   bool newton(int step, double t_new, double dt, StepRecord& rec);
@@ -109,6 +117,7 @@ class Simulation {
   void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
   struct Residual {
     double displacement = 0.0, volume = 0.0, micro = 0.0;
+    double cavity = 0.0;  ///< max_c |R_c| / V_c,ref (circulation-coupled cavities)
   };
   Residual converge(double t_new);
   void solve(int iteration);
@@ -138,6 +147,7 @@ class Simulation {
   std::vector<Mat3> Q_;                ///< frame per point
   std::vector<Mat9> R_;
   std::vector<double> activation_time_;  ///< t_act per point (s)
+  CavityPressureTerm* cavity_term_ = nullptr;  ///< when a circulation is coupled
   std::vector<std::vector<int>> point_dofs_;  ///< per owned point: its element's ū DOFs
   std::function<double(int, double)> dirichlet_value_;
   // Macro state: current and committed (every DOF; v, a used on the ū block).

@@ -6,6 +6,7 @@
 
 #include "common/activation/activation_schema.h"
 #include "common/cellmodels/cell_model_schema.h"
+#include "common/circulation/circulation_schema.h"
 #include "common/materials/material_factory.h"
 
 #include <limits>
@@ -295,6 +296,7 @@ Schema make_run_spec_schema() {
                 {"rtol", number(1e-8, kOpenUnit, "macro residual / max(‖f_int‖, ‖f_ext‖)")},
                 {"micro_rtol", number(1e-8, kOpenUnit, "unit residual ‖r‖ / r_ref")},
                 {"max_cutbacks", integer(4, Range::closed(0, 30), "step halvings before giving up")}})},
+       {"circulation", circulation_schema()},
        {"cavities",
         map(false, "cavities whose deformed volume is reported every step", "name",
             object(true, "a cavity",
