@@ -2,6 +2,7 @@
 
 #include "common/mesh/cavity_volume.h"
 
+#include "common/circulation/circulation_report.h"
 #include "common/io/atomic_file.h"
 
 #include <algorithm>
@@ -17,7 +18,8 @@ bool is_run_output_file(const std::string& name) {
   // Keep in step with what RunOutput, Trace and tools/trace_plot.py write.
   static const std::regex own(
       "(summary\\.json|spec\\.json|fe2heart\\.log|displacement\\.pvd|displacement_[0-9]+\\.vtu|"
-      "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png)"
+      "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png|"
+      "pv_curve\\.png|pv_loop\\.png|circulation\\.csv)"
       "(\\.tmp)?");
   return std::regex_match(name, own);
 }
@@ -221,6 +223,38 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                                         {"pressure_loads", loads},
                                         {"reference_volume", reference_volumes_[c]},
                                         {"volume", now[c]}};
+  }
+  if (spec.circulation && !r.history.empty()) {
+    // The beat through the circulation's eyes: circulation.csv (as `fe2heart circulation`
+    // writes it, so tools/pv_loop_plot.py draws pv_loop.png) and the figures of the last
+    // period (or of the whole run, if shorter).
+    const Circulation& c = *spec.circulation;
+    std::vector<CirculationSample> run(1);
+    run[0].p.assign(c.cavities(), 0.0);
+    for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(reference_volumes_[spec.coupled_cavities[k]]);
+    for (const auto& h : r.history) {
+      if (h.circulation.n == 0) break;  // a failed last step
+      CirculationSample x;
+      x.t = h.time;
+      x.p = h.cavity_pressures;
+      for (int k = 0; k < c.cavities(); ++k) x.V.push_back(h.cavity_volumes[spec.coupled_cavities[k]]);
+      x.flows = h.circulation;
+      x.blood_volume = 0.0;
+      for (double v : h.circulation.volumes) x.blood_volume += v;
+      for (double v : x.V) x.blood_volume += v;
+      x.newton_iterations = h.circulation.newton_iterations;
+      run.push_back(std::move(x));
+    }
+    const double period = c.period(), t_end = run.back().t;
+    size_t first = 0;
+    while (first + 1 < run.size() && run[first + 1].t <= t_end - period + 1e-9 * period) ++first;
+    const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
+    const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
+    s["circulation"] = {{"description", c.description()},
+                        {"figures_over", first > 0 ? "the last period" : "the whole run (shorter than a period)"},
+                        {"period", period},
+                        {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
+    if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(c, run));
   }
   if (!spec.cavities.empty()) s["cavities"] = cavities;
   s["gmres_iterations"] = gmres;

@@ -2,7 +2,7 @@
 // elastance ventricles standing in for the wall (common/circulation/). Writes
 // DIR/circulation.csv (every step), DIR/summary.json (per cavity EDV, ESV, SV, EF, peak
 // pressure, dP/dt, stroke work; blood volume and its drift) and DIR/pv_loop.png.
-#include "common/circulation/beat_summary.h"
+#include "common/circulation/circulation_report.h"
 #include "common/circulation/circulation_run.h"
 #include "common/circulation/circulation_run_spec.h"
 #include "common/io/atomic_file.h"
@@ -20,60 +20,12 @@
 namespace fe2::cli {
 namespace {
 
-std::string csv(const CirculationRunSpec& spec, const std::vector<CirculationSample>& run) {
-  const Circulation& c = *spec.circulation;
-  std::string out = "t";
-  for (const auto& n : c.cavity_names())
-    out += fmt::format(",p_{0},V_{0},Q_in_{0},Q_out_{0},Q_net_{0},phase_{0}", n);
-  // Every compartment's pressure and every connection's flow ("p:lv.arterial", "Q:lv.Zc").
-  for (const auto& n : c.compartment_names()) out += ",p:" + n;
-  for (const auto& n : c.connection_names()) out += ",Q:" + n;
-  out += ",blood_volume\n";
-  const size_t nodes = c.compartment_names().size(), links = c.connection_names().size();
-  for (const auto& s : run) {
-    const bool flows = !s.flows.Q_net.empty();
-    out += fmt::format("{:.9g}", s.t);
-    for (int k = 0; k < c.cavities(); ++k)
-      out += fmt::format(",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}", s.p[k], s.V[k],
-                         flows ? s.flows.Q_in[k] : 0.0, flows ? s.flows.Q_out[k] : 0.0,
-                         flows ? s.flows.Q_net[k] : 0.0, flows ? s.flows.phase[k] : "initial");
-    for (size_t k = 0; k < nodes; ++k) out += flows ? fmt::format(",{:.10g}", s.flows.pressures[k]) : ",";
-    for (size_t k = 0; k < links; ++k) out += flows ? fmt::format(",{:.10g}", s.flows.flows[k]) : ",";
-    out += fmt::format(",{:.17g}\n", s.blood_volume);
-  }
-  return out;
-}
-
 json summary(const CirculationRunSpec& spec, const std::vector<CirculationSample>& run, double seconds) {
   const Circulation& c = *spec.circulation;
   const int per_beat = spec.beats ? spec.steps / spec.beats : spec.steps;
   // The window of the figures: the last whole beat, or the whole run.
   const size_t last = run.size() - 1, first = spec.beats ? last - per_beat : 0;
-  std::vector<double> t;
-  for (const auto& s : run) t.push_back(s.t);
-  json cav = json::object();
-  for (int k = 0; k < c.cavities(); ++k) {
-    std::vector<double> p, V;
-    for (const auto& s : run) p.push_back(s.p[k]), V.push_back(s.V[k]);
-    const BeatFigures b = beat_figures(t, p, V, first, last);
-    json edv = json::array();
-    for (int beat = 0; beat < spec.beats; ++beat)
-      edv.push_back(beat_figures(t, p, V, beat * per_beat, (beat + 1) * per_beat).EDV);
-    json j = {{"EDV", b.EDV},
-              {"ESV", b.ESV},
-              {"SV", b.SV},
-              {"EF", b.EF},
-              {"peak_pressure", b.peak_pressure},
-              {"dpdt_max", b.dpdt_max},
-              {"dpdt_min", b.dpdt_min},
-              {"stroke_work", b.stroke_work},
-              {"stroke_work_J", b.stroke_work * 1e-9},
-              {"EDV_per_beat", edv}};
-    if (spec.beats >= 2)
-      j["EDV_change_last_beat"] = std::abs(edv[spec.beats - 1].get<double>() - edv[spec.beats - 2].get<double>()) /
-                                  edv[spec.beats - 1].get<double>();
-    cav[c.cavity_names()[k]] = j;
-  }
+  const json cav = cavity_figures(c, run, first, last, spec.beats, per_beat);
   double drift = 0.0;
   int max_it = 0;
   for (const auto& s : run) {
@@ -114,7 +66,7 @@ int circulation(const CirculationOptions& o) {
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
   const auto run = run_circulation(spec);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_file_atomically(o.out + "/circulation.csv", csv(spec, run));
+  write_file_atomically(o.out + "/circulation.csv", circulation_csv(*spec.circulation, run));
   const json s = summary(spec, run, seconds);
   write_file_atomically(o.out + "/summary.json", s.dump(2) + "\n");
   for (const auto& [name, c] : s["cavities"].items())

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Pressure–volume loops of a standalone circulation run (`fe2heart circulation`).
+"""Pressure–volume loops of a run with a circulation (`fe2heart circulation`, or `run`).
 
 Reads RUN_DIR/circulation.csv and draws RUN_DIR/pv_loop.png: left, each cavity's
 pressure against volume (earlier beats faint, the last beat bold); right, cavity and
@@ -34,9 +34,10 @@ def main():
             summary = json.load(f)
     except (OSError, ValueError) as e:
         sys.exit(f"pv_loop_plot: cannot read {a.run_dir}: {e}")
-    cavities = list(summary["cavities"])
+    # The cavities of the CSV (a `run` summary also lists cavities without a circulation).
+    cavities = [k[2:] for k in rows[0] if k.startswith("p_")]
     t = [float(r["t"]) for r in rows]
-    beats, steps = summary["beats"], summary["steps"]
+    beats, steps = summary.get("beats", 0), summary.get("steps", len(rows) - 1)
     start = len(rows) - 1 - (steps // beats if beats else steps)  # the last beat's first row
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
     for name in cavities:
