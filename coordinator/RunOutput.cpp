@@ -251,6 +251,9 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
     const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
     const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
     s["circulation"] = {{"description", c.description()},
+                        {"beats_run", beats},
+                        {"periodic", r.periodic},
+                        {"EDV_change_last_beat", r.edv_change},
                         {"figures_over", first > 0 ? "the last period" : "the whole run (shorter than a period)"},
                         {"period", period},
                         {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};

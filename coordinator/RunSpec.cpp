@@ -328,6 +328,14 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   spec.beta = t.number("beta", 0.25, Range{0.0, 0.5, true, false}, "Newmark β");
   spec.gamma = t.number("gamma", 0.5, Range::closed(0.0, 1.0), "Newmark γ");
   spec.density = t.number("density", 1000.0, Range::positive(), "mass density (Newmark)");
+  spec.beats = t.integer("beats", 0, Range::closed(0, 10000),
+                         "heart beats to run (t_end = beats x circulation period); 0: t_end and steps");
+  spec.steps_per_beat = t.integer("steps_per_beat", 100, Range::closed(1, 1e7), "steps per beat (with beats)");
+  spec.periodic_tolerance =
+      t.number("periodic_tolerance", 0.0, Range::non_negative(),
+               "stop before the last beat once every cavity's EDV changed by less than this (relative) over a beat; 0: run every beat");
+  if (spec.beats > 0 && (t.has("t_end") || t.has("steps")))
+    t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
   t.finish();
 
   SpecNode n = root.child("newton", false, "Newton–Raphson");
@@ -376,6 +384,10 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
       }
       spec.coupled_cavities.push_back(found);
     }
+    if (spec.beats > 0) {
+      spec.t_end = spec.beats * spec.circulation->period();
+      spec.steps = spec.beats * spec.steps_per_beat;
+    }
     for (const auto& ps : spec.pressure)
       for (int c : spec.coupled_cavities)
         if (ps.surface == spec.cavities[c].second)
@@ -383,6 +395,10 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
                                        "whose pressure the circulation sets; expected no /pressure entry there",
                                        ps.surface, spec.cavities[c].first));
   }
+
+  if (spec.beats > 0 && !spec.circulation)
+    throw InputError(fmt::format("/time/beats: got {}, expected 0 without a /circulation (a beat lasts its period)",
+                                 spec.beats));
 
   SpecNode probes = root.child("probes", false, "named material points to report");
   for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {

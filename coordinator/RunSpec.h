@@ -93,6 +93,9 @@ struct RunSpec {
   int steps = 1;
   bool dynamic = false;    ///< Newmark-β with a mass matrix
   double beta = 0.25, gamma = 0.5, density = 0.0;
+  int beats = 0;                  ///< time.beats (0: t_end and steps); t_end = beats · period
+  int steps_per_beat = 0;
+  double periodic_tolerance = 0;  ///< stop once the EDV changes less than this over a beat
 
   int newton_max_iterations = 20;
   double newton_rtol = 1e-8;      ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)

@@ -401,6 +401,22 @@ void Simulation::rollback() {
   a_ = a_n_;
 }
 
+bool Simulation::beat_is_periodic(RunResult& result) const {
+  // At the end of beat b ≥ 2: the largest relative change of a cavity's EDV (its largest
+  // volume over the beat) from beat b − 1. The same on every coordinator (x is).
+  const int per = spec_.steps_per_beat, n = static_cast<int>(result.history.size());
+  if (spec_.beats == 0 || per == 0 || n % per != 0 || n < 2 * per) return false;
+  double change = 0.0;
+  for (size_t c = 0; c < spec_.cavities.size(); ++c) {
+    double last = 0.0, before = 0.0;
+    for (int s = n - per; s < n; ++s) last = std::max(last, result.history[s].cavity_volumes[c]);
+    for (int s = n - 2 * per; s < n - per; ++s) before = std::max(before, result.history[s].cavity_volumes[c]);
+    change = std::max(change, std::abs(last - before) / last);
+  }
+  result.edv_change = change;
+  return spec_.periodic_tolerance > 0.0 && change < spec_.periodic_tolerance;
+}
+
 RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_iteration) {
   on_iteration_ = on_iteration;
   RunResult result;
@@ -465,6 +481,13 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     result.steps = step + 1;
     result.history.push_back(rec);
     if (on_step) on_step(rec);
+    if (beat_is_periodic(result)) {
+      spdlog::info("periodic after {} beats: EDV changed by {:.2e} (relative) over the last beat, "
+                   "below time.periodic_tolerance = {:.1e}",
+                   (step + 1) / spec_.steps_per_beat, result.edv_change, spec_.periodic_tolerance);
+      result.periodic = true;
+      break;
+    }
   }
   result.converged = true;
   return result;

@@ -58,6 +58,8 @@ struct RunResult {
   int newton_iterations = 0;
   std::vector<StepRecord> history;
   std::string error;                  ///< why the run stopped early, if it did
+  bool periodic = false;              ///< stopped at a periodic beat (time.periodic_tolerance)
+  double edv_change = 0.0;            ///< time.beats: EDV change over the last whole beat
 };
 
 class Simulation {
@@ -124,6 +126,8 @@ class Simulation {
   void update(bool first, const Eigen::VectorXd& du_D);
 
   MacroState state(double t_new, double dt) const;
+  /// time.beats: records the last beat's EDV change; true when below the tolerance.
+  bool beat_is_periodic(RunResult& result) const;
   Eigen::VectorXd dirichlet_increment(double t_new) const;
   /// Throws the same NumericalError on every coordinator if any of them failed
   /// (`why` non-empty on the ones that did). @note Collective.

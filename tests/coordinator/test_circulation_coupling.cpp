@@ -71,5 +71,30 @@ TEST(CirculationCoupling, LvBeatHasTheFourPhasesAndHoldsItsVolumeWhileTheValvesA
   EXPECT_GT(p_max, 9000.0);                 // above the arterial pressure it opened against
 }
 
+// Beat after beat (time.beats, calcium repeating with the period) the loop settles: the
+// run stops once the EDV changes by less than time.periodic_tolerance over a beat, and
+// the last beat's loop then closes (the volume it ends with is the one it started with).
+TEST(CirculationCoupling, BeatsUntilTheLoopIsPeriodic) {
+  json j = lv_beat(1, 1.0);
+  j["time"] = {{"beats", 5}, {"steps_per_beat", 40}, {"periodic_tolerance", 2e-4}};
+  j["models"]["myocardium"]["material"]["active"]["calcium"] = {{"period", 0.8}};
+  const RunSpec spec = read_run_spec(j, "");
+  EXPECT_EQ(spec.steps, 200);
+  EXPECT_DOUBLE_EQ(spec.t_end, 4.0);
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points);
+  const RunResult r = sim.run();
+  ASSERT_TRUE(r.converged) << r.error;
+  const int beats = static_cast<int>(r.history.size()) / 40;
+  std::printf("periodic after %d beats: EDV change %.2e\n", beats, r.edv_change);
+  EXPECT_TRUE(r.periodic);
+  EXPECT_LT(r.edv_change, 2e-4);
+  EXPECT_LT(beats, 5);  // stopped before the last beat
+  EXPECT_EQ(r.history.size() % 40, 0u);
+  // The last beat's loop closes to within its EDV change.
+  const double V_end = r.history.back().cavity_volumes[0], V_start = r.history[r.history.size() - 41].cavity_volumes[0];
+  EXPECT_LT(std::abs(V_end - V_start) / V_end, 1e-3);
+}
+
 }  // namespace
 }  // namespace fe2
