@@ -88,8 +88,9 @@ RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
 
 std::string RunOutput::pvd_path() const { return dir_ + "/displacement.pvd"; }
 
-void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step,
+void RunOutput::write_fields(const Simulation& sim, const PointFields& fields, int step,
                              double time) {
+  const std::vector<Vec9>& P = fields.P;
   const TetMesh& mesh = sim.spec().mesh;
   const Eigen::VectorXd u = sim.displacement();
   std::vector<Vec3> disp(mesh.num_nodes());
@@ -101,7 +102,7 @@ void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, 
   // Cell values are volume-weighted means over the element's integration points.
   const MacroPoints& points = sim.points();
   const int ne = mesh.num_tets();
-  std::vector<double> detF(ne, 0.0), region(ne), model(ne);
+  std::vector<double> detF(ne, 0.0), region(ne), model(ne), Ta(ne, 0.0);
   std::vector<Vec3> fibre(ne, Vec3::Zero());
   std::vector<Vec9> P_cell(ne, Vec9::Zero());
   for (int e = 0; e < ne; ++e) {
@@ -111,16 +112,19 @@ void RunOutput::write_fields(const Simulation& sim, const std::vector<Vec9>& P, 
       volume += w;
       detF[e] += w * (Mat3::Identity() + as_mat3(sim.displacement_gradient(k))).determinant();
       P_cell[e] += w * P[k];
+      Ta[e] += w * fields.active_tension[k];
       fibre[e] += w * sim.frame(k).col(0);
     }
     detF[e] /= volume;
     P_cell[e] /= volume;
+    Ta[e] /= volume;
     fibre[e].normalize();
     region[e] = mesh.region[e];
     model[e] = sim.spec().model_index_of_tet(e);
   }
   cell.add_tensor("P_bar", P_cell);
   cell.add_scalar("det_F", detF);
+  if (sim.spec().contracts()) cell.add_scalar("active_tension", Ta);
   cell.add_scalar("region", region);
   cell.add_scalar("model", model);
   cell.add_vector("fibre", fibre);

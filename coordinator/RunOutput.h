@@ -40,8 +40,8 @@ class RunOutput {
   /// copies the spec into it and writes an incomplete summary.json.
   RunOutput(const std::string& dir, const RunSpec& spec);
   /// Writes the fields of the current state as step `step` (VTU + PVD entry); `P` is
-  /// Simulation::gather_point_stress() (collective, so the caller gathers).
-  void write_fields(const Simulation& sim, const std::vector<Vec9>& P, int step, double time);
+  /// Simulation::gather_point_fields() (collective, so the caller gathers).
+  void write_fields(const Simulation& sim, const PointFields& fields, int step, double time);
   /// After each accepted step: rewrites summary.json with "complete": false and the
   /// steps so far (probes at the current state).
   void write_progress(const Simulation& sim, const StepRecord& step, double wall_seconds);

@@ -38,6 +38,16 @@ Mat3 FrameSpec::at(const Vec3& X) const {
   return a.at(X);
 }
 
+bool RunSpec::contracts() const {
+  for (const auto& m : models) {
+    if (m.material && m.material->active_tension_slot() >= 0) return true;
+    if (m.plan)
+      for (const auto& law : m.plan->materials)
+        if (law->active_tension_slot() >= 0) return true;
+  }
+  return false;
+}
+
 int RunSpec::model_index_of_tet(int e) const {
   auto it = model_of_region.find(mesh.region[e]);
   return it == model_of_region.end() ? default_model : it->second;

@@ -115,6 +115,8 @@ struct RunSpec {
   bool write_vtu = true;
 
   int model_index_of_tet(int e) const;
+  /// Whether some point model has contracting cells (active stress).
+  bool contracts() const;
   /// Model index of every integration point, in point order (element after element,
   /// points_per_element each; MacroPoints).
   std::vector<int> model_of_points() const;

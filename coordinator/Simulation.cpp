@@ -141,15 +141,24 @@ void Simulation::agree_on_failure(const std::string& why) const {
   throw NumericalError(std::string(reinterpret_cast<const char*>(text.data()), text.size()));
 }
 
-std::vector<Vec9> Simulation::gather_point_stress() const {
-  std::vector<double> flat(9 * static_cast<size_t>(points_.size()), 0.0);
-  for (size_t s = 0; s < owned_points_.size(); ++s)
-    std::copy(responses_[s].P_bar.data(), responses_[s].P_bar.data() + 9,
-              flat.begin() + 9 * static_cast<size_t>(owned_points_[s]));
+PointFields Simulation::gather_point_fields() const {
+  // P̄ (9) and T_a (1) per point, summed onto the first coordinator.
+  constexpr size_t kPer = 10;
+  std::vector<double> flat(kPer * static_cast<size_t>(points_.size()), 0.0);
+  for (size_t s = 0; s < owned_points_.size(); ++s) {
+    double* at = &flat[kPer * static_cast<size_t>(owned_points_[s])];
+    std::copy(responses_[s].P_bar.data(), responses_[s].P_bar.data() + 9, at);
+    at[9] = responses_[s].active_tension;
+  }
   group_.reduce_sum(flat.data(), static_cast<int>(flat.size()), 0);
-  std::vector<Vec9> P(points_.size());
-  for (int k = 0; k < points_.size(); ++k) P[k] = Eigen::Map<const Vec9>(&flat[9 * static_cast<size_t>(k)]);
-  return P;
+  PointFields f;
+  f.P.resize(points_.size());
+  f.active_tension.resize(points_.size());
+  for (int k = 0; k < points_.size(); ++k) {
+    f.P[k] = Eigen::Map<const Vec9>(&flat[kPer * static_cast<size_t>(k)]);
+    f.active_tension[k] = flat[kPer * static_cast<size_t>(k) + 9];
+  }
+  return f;
 }
 
 MacroState Simulation::state(double t_new, double dt) const {
@@ -228,6 +237,7 @@ void Simulation::evaluate_points(int step, int iteration, double t_new, double d
     responses_[s].A = R.transpose() * results_[s].A_hom * R;  // back to the global frame
     responses_[s].P_tilde = R.transpose() * results_[s].P_tilde;
     responses_[s].P_bar = R.transpose() * results_[s].P_bar;
+    responses_[s].active_tension = results_[s].active_tension;
   }
 }
 

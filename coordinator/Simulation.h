@@ -32,6 +32,12 @@ namespace fe2 {
 
 class CavityPressureTerm;
 
+/// What the points answered at the last evaluation, for output (on the first coordinator).
+struct PointFields {
+  std::vector<Vec9> P;                ///< P̄ per point (global frame)
+  std::vector<double> active_tension; ///< T_a per point (0 where nothing contracts), Pa
+};
+
 struct StepRecord {
   int step = 0;
   double time = 0.0;
@@ -98,7 +104,7 @@ class Simulation {
   std::vector<double> nodal_pressure() const;
   /// Per point, the last P̄ in the global frame, gathered on coordinator 0.
   /// @note Collective.
-  std::vector<Vec9> gather_point_stress() const;
+  PointFields gather_point_fields() const;
   const Mat3& frame(int point) const { return Q_[point]; }
   /// Z̄ at point k of the current ū.
   Vec9 displacement_gradient(int point) const;

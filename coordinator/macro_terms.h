@@ -19,6 +19,7 @@ struct PointResponse {
   Mat9 A = Mat9::Zero();      ///< 𝔸_hom
   Vec9 P_tilde = Vec9::Zero();///< P̃ (Eq. 9), drives Newton
   Vec9 P_bar = Vec9::Zero();  ///< P̄, the true stress (convergence)
+  double active_tension = 0.0;///< T_a of the point's cells (output)
 };
 
 /// f_int = Σ_k |ē_k| B̄_kᵀ P̄_k, K = Σ_k |ē_k| B̄_kᵀ 𝔸_k B̄_k over the owned elements;

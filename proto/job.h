@@ -64,6 +64,7 @@ struct JobOutput {
   double cpu_solve = 0.0;     ///< Step 1 GMRES
   uint8_t next_refresh = 0;   ///< NextJob bits: which possible next jobs would refresh
   uint64_t state_bytes = 0;   ///< the point's serialized state now (what a move sends)
+  double active_tension = 0.0;///< T_a of the point's contracting cells (mean over a unit's cells), Pa
   uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)
   std::string message;        ///< why, when failed
 };

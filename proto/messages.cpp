@@ -98,6 +98,7 @@ void pack_result(ByteWriter& w, const JobOutput& o) {
   w.put(o.cpu_solve);
   w.put(o.next_refresh);
   w.put(o.state_bytes);
+  w.put(o.active_tension);
   w.put(o.failed);
   w.put_string(o.message);
 }
@@ -120,6 +121,7 @@ JobOutput unpack_result(ByteReader& r) {
   o.cpu_solve = r.get<double>();
   o.next_refresh = r.get<uint8_t>();
   o.state_bytes = r.get<uint64_t>();
+  o.active_tension = r.get<double>();
   o.failed = r.get<uint8_t>();
   o.message = r.get_string();
   if (o.unit < 0) throw Error(fmt::format("{}: result for unit {}", r.what(), o.unit));

@@ -15,7 +15,7 @@
 //               9 f64 Z̄ | 9 f64 Ż̄ | f64 ∂Ż̄/∂Z̄ | f64 t_act             (kJobInputBytes)
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
-//               u8 next_refresh | u64 state_bytes | u8 status | message string
+//               u8 next_refresh | u64 state_bytes | f64 T_a | u8 status | message string
 //                                                                   (kJobOutputBytes + text)
 //   JobCost   = i32 unit | u8 kind | i32 gmres | f64 cpu, cpu_refresh | u8 next_refresh |
 //               u64 state_bytes | u8 failed                         (kJobCostBytes)
@@ -38,7 +38,7 @@ const char* name_of(Type t);
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
 constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
-constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 1;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 1;
 constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 1;
 
 /// Reads and checks the header; throws fe2::Error naming both versions on mismatch.

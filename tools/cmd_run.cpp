@@ -230,8 +230,8 @@ int run(const RunOptions& o) {
     Simulation sim(spec, points, coords, layout.owned_elements(rank));
     const double t0 = wall_seconds();
     auto write_fields = [&](int step, double time) {
-      const auto P = sim.gather_point_stress();
-      if (output) output->write_fields(sim, P, step, time);
+      const PointFields f = sim.gather_point_fields();
+      if (output) output->write_fields(sim, f, step, time);
     };
     write_fields(0, 0.0);
     const RunResult result = sim.run(

@@ -34,6 +34,7 @@ proto::JobOutput MacroLawPoint::iterate(const proto::JobInput& in) {
   if (material_->rate_dependent()) out.A_hom += in.Zbar_dot_coefficient * A_rate;
   out.P_bar = Pi;
   out.P_tilde = Pi;
+  if (const int slot = material_->active_tension_slot(); slot >= 0) out.active_tension = history_[slot];
   out.r_norm = 0.0;
   out.r_ref = 1.0;
   out.cpu_seconds = out.cpu_assembly = thread_cpu_seconds() - t0;

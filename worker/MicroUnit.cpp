@@ -34,6 +34,23 @@ MicroUnit::MicroUnit(MicroModelPtr model)
   sys_.H = Eigen::MatrixXd::Zero(9, n);
 }
 
+double MicroUnit::mean_active_tension() const {
+  const MicroModel& m = *model_;
+  double sum = 0.0, weight = 0.0;
+  for (int e = 0; e < m.num_elements(); ++e) {
+    const Material& law = m.material_of(e);
+    const int slot = law.active_tension_slot();
+    if (slot < 0) continue;
+    const size_t h = static_cast<size_t>(law.history_size()), at = m.history_offset(e);
+    for (int q = 0; q < 8; ++q) {
+      const double w = m.geometry(e).weight[q];
+      sum += w * history_[at + q * h + static_cast<size_t>(slot)];
+      weight += w;
+    }
+  }
+  return weight > 0.0 ? sum / weight : 0.0;
+}
+
 void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
                             std::vector<double>* history) const {
   const MicroModel& m = *model_;
@@ -220,6 +237,7 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
     throw NumericalError(fmt::format("micro unit {}: non-finite residual or stress at step {} "
                                      "iteration {}",
                                      in.unit, in.step, in.iteration));
+  out.active_tension = mean_active_tension();
   const double r_norm = sys_.r.norm();
   const double r_ref = std::max(sys_.Pbar.norm(), model_->stress_floor()) * model_->node_scale();
   if (!std::isfinite(r_norm) || !std::isfinite(r_ref))  // overflow: inf <= inf must not converge

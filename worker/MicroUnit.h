@@ -66,6 +66,8 @@ class MicroUnit final : public PointModel {
   const SparseFactor* factor() const { return factor_.get(); }
   /// Point history of every Gauss point at the last assembled state, and at the last commit.
   const std::vector<double>& history() const { return history_; }
+  /// T_a averaged over the Gauss points of the contracting cells (0 without any).
+  double mean_active_tension() const;
   const std::vector<double>& history_committed() const { return history_committed_; }
 
  private:

@@ -78,6 +78,9 @@ class Material {
     A_rate.setZero();
   }
 
+  /// Where the point's active fibre tension T_a sits in its history (for output), or −1.
+  virtual int active_tension_slot() const { return -1; }
+
   /// Whether Π depends on Ż (A_rate may be nonzero).
   virtual bool rate_dependent() const { return false; }
 

@@ -45,6 +45,7 @@ class Myocardium final : public Material {
   const MyocardiumOptions& options() const { return options_; }
   /// Where T_a sits in the history (−1 without a cell model).
   int tension_slot() const { return options_.cell ? passive_history_ + cell_history_ : -1; }
+  int active_tension_slot() const override { return tension_slot(); }
 
  private:
   MaterialPtr passive_;

@@ -31,6 +31,7 @@ JobOutput some_result(int unit) {
   o.gmres_iterations = 4;
   o.kind = Refresh::refresh;
   o.cpu_seconds = 0.1;
+  o.active_tension = 4.5e4 + unit;
   o.failed = 1;
   o.message = "did not converge";
   return o;
@@ -83,6 +84,7 @@ TEST(Messages, PullCarriesResultsExactly) {
   EXPECT_EQ(back.results[1].A_hom, p.results[1].A_hom);
   EXPECT_EQ(back.results[0].message, "did not converge");
   EXPECT_EQ(back.results[0].kind, Refresh::refresh);
+  EXPECT_EQ(back.results[1].active_tension, p.results[1].active_tension);
   EXPECT_EQ(back.max_jobs, 3);
   expect_rejects_corruption<Pull>(bytes);
 }

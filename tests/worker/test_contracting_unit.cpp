@@ -146,7 +146,7 @@ TEST(ContractingUnit, HomogeneousUnitIsTheMacroLawOverATwitch) {
   const auto model = contracting_two_cell_model(law, law);
   MicroUnit unit(model);
   MacroLawPoint point(law);
-  double worst = 0.0, peak = 0.0;
+  double worst = 0.0, peak = 0.0, worst_Ta = 0.0, peak_Ta = 0.0;
   int step = 0;
   for (double t = kDt; t <= 0.3 + 1e-12; t += kDt, ++step) {
     const proto::JobInput in = step_job(step, t, 0.02);
@@ -156,9 +156,15 @@ TEST(ContractingUnit, HomogeneousUnitIsTheMacroLawOverATwitch) {
     worst = std::max(worst, rel_diff(eq.P_bar, out.P_bar));
     worst = std::max(worst, rel_diff(eq.A_hom, out.A_hom));
     peak = std::max(peak, out.P_bar.norm());
+    // The tension reported for output: the unit's cell mean = the point's own T_a.
+    worst_Ta = std::max(worst_Ta, std::abs(unit.mean_active_tension() - out.active_tension));
+    peak_Ta = std::max(peak_Ta, out.active_tension);
   }
-  std::printf("homogeneous contracting unit vs macro law over a twitch: %.2e\n", worst);
+  std::printf("homogeneous contracting unit vs macro law over a twitch: %.2e (T_a: %.2e of a %.1f kPa peak)\n",
+              worst, worst_Ta / peak_Ta, 1e-3 * peak_Ta);
   EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(worst_Ta, 1e-9 * peak_Ta);
+  EXPECT_GT(peak_Ta, 3e4);
 }
 
 // Contraction generated inside the cells of a two-cell unit held isometric (Z̄ = 0):
