@@ -250,7 +250,8 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
       run.push_back(std::move(x));
     }
     const double period = c.period(), t_end = run.back().t;
-    size_t first = 0;
+    // The window: the last period, or the whole run without its unloaded initial state.
+    size_t first = 1;
     while (first + 1 < run.size() && run[first + 1].t <= t_end - period + 1e-9 * period) ++first;
     const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
     const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
@@ -258,7 +259,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                         {"beats_run", beats},
                         {"periodic", r.periodic},
                         {"EDV_change_last_beat", r.edv_change},
-                        {"figures_over", first > 0 ? "the last period" : "the whole run (shorter than a period)"},
+                        {"figures_over", t_end >= period * (1 - 1e-9) ? "the last period" : "the whole run (shorter than a period)"},
                         {"period", period},
                         {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
     if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(c, run));
