@@ -228,7 +228,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                                         {"reference_volume", reference_volumes_[c]},
                                         {"volume", now[c]}};
   }
-  if (spec.circulation && !r.history.empty()) {
+  if (spec.circulation && r.history.size() >= 2) {  // figures need a window of two steps
     // The beat through the circulation's eyes: circulation.csv (as `fe2heart circulation`
     // writes it, so tools/pv_loop_plot.py draws pv_loop.png) and the figures of the last
     // period (or of the whole run, if shorter).
@@ -249,19 +249,21 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
       x.newton_iterations = h.circulation.newton_iterations;
       run.push_back(std::move(x));
     }
-    const double period = c.period(), t_end = run.back().t;
-    // The window: the last period, or the whole run without its unloaded initial state.
-    size_t first = 1;
-    while (first + 1 < run.size() && run[first + 1].t <= t_end - period + 1e-9 * period) ++first;
-    const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
-    const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
-    s["circulation"] = {{"description", c.description()},
-                        {"beats_run", beats},
-                        {"periodic", r.periodic},
-                        {"EDV_change_last_beat", r.edv_change},
-                        {"figures_over", t_end >= period * (1 - 1e-9) ? "the last period" : "the whole run (shorter than a period)"},
-                        {"period", period},
-                        {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
+    if (run.size() >= 3) {  // a window of at least two steps
+      const double period = c.period(), t_end = run.back().t;
+      // The window: the last period, or the whole run without its unloaded initial state.
+      size_t first = 1;
+      while (first + 1 < run.size() && run[first + 1].t <= t_end - period + 1e-9 * period) ++first;
+      const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
+      const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
+      s["circulation"] = {{"description", c.description()},
+                          {"beats_run", beats},
+                          {"periodic", r.periodic},
+                          {"EDV_change_last_beat", r.edv_change},
+                          {"figures_over", t_end >= period * (1 - 1e-9) ? "the last period" : "the whole run (shorter than a period)"},
+                          {"period", period},
+                          {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
+    }
     if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(c, run));
   }
   if (!spec.cavities.empty()) s["cavities"] = cavities;
