@@ -1,6 +1,7 @@
 #include "common/fibres/FileFrame.h"
 
 #include "common/error.h"
+#include "common/io/tagged_csv.h"
 #include "common/mesh/gmsh_reader.h"
 
 #include <algorithm>
@@ -24,40 +25,11 @@ struct Entry {
 };
 
 std::vector<Entry> read_csv(const std::string& file) {
-  std::ifstream in(file);
-  if (!in)
-    throw InputError(fmt::format("cannot open fibre file '{}' ({}), expected a CSV file of lines "
-                                 "tag,fx,fy,fz,sx,sy,sz",
-                                 file, std::strerror(errno)));
   std::vector<Entry> out;
-  std::string line;
-  bool first = true;  // the first line that is not blank or a comment may be a header
-  for (int n = 1; std::getline(in, line); ++n) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const auto start = line.find_first_not_of(" \t");
-    if (start == std::string::npos || line[start] == '#') continue;
-    std::vector<double> v;
-    std::vector<bool> ok;
-    std::stringstream fields(line);
-    std::string field;
-    while (std::getline(fields, field, ',')) {
-      const auto a = field.find_first_not_of(" \t"), b = field.find_last_not_of(" \t");
-      double x = 0;
-      const char* p = field.data() + (a == std::string::npos ? 0 : a);
-      const char* q = field.data() + (a == std::string::npos ? 0 : b + 1);
-      const auto [end, ec] = std::from_chars(p, q, x);
-      ok.push_back(p != q && ec == std::errc() && end == q && std::isfinite(x));
-      v.push_back(x);
-    }
-    const bool header = first && !ok.empty() && !ok[0];  // "tag,fx,fy,fz,sx,sy,sz"
-    first = false;
-    if (header) continue;
-    const bool numbers = std::find(ok.begin(), ok.end(), false) == ok.end();
-    if (!numbers || v.size() != 7 || v[0] != std::floor(v[0]) || v[0] < 1 || v[0] > 9e15)
-      throw InputError(fmt::format("fibre file '{}' line {}: got '{}', expected 7 comma-separated numbers "
-                                   "tag,fx,fy,fz,sx,sy,sz (tag a positive integer)",
-                                   file, n, line.substr(0, 80)));
-    out.push_back({static_cast<long long>(v[0]), n, Vec3(v[1], v[2], v[3]), Vec3(v[4], v[5], v[6])});
+  for (const TaggedRow& r :
+       read_tagged_csv(file, 6, "fibre file", "tag,fx,fy,fz,sx,sy,sz", "tag a positive integer")) {
+    const auto& v = r.values;
+    out.push_back({r.tag, r.line, Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5])});
   }
   return out;
 }
