@@ -10,6 +10,7 @@ MacroSystem::MacroSystem(const RunSpec& spec, bool pressure_field)
     vertex_of_pressure_ = m.vertices();
     for (size_t j = 0; j < vertex_of_pressure_.size(); ++j)
       pressure_of_node_[vertex_of_pressure_[j]] = static_cast<int>(j);
+    if (spec.formulation.element_pressure) num_element_pressures_ = m.num_tets() - 1;
   }
   num_cavities_ = static_cast<int>(spec.coupled_cavities.size());
   num_dofs_ = 3 * num_nodes_ + num_pressure() + num_cavities_;

@@ -1,7 +1,8 @@
 #pragma once
 // The macro unknowns and the fixed triplet pattern of S̄ (Eq. 10) over several fields:
 //   [ ū : 3 per mesh node (node-major 3a + i) | p : 1 per vertex, when the formulation
-//     has a pressure field | p_c : 1 per cavity coupled to a circulation | later: fluid ]
+//     has a pressure field, then 1 per element but the first for an enriched P1+P0
+//     pressure | p_c : 1 per cavity coupled to a circulation | later: fluid ]
 // each field a contiguous range at its offset (MFEM's BlockOperator offsets). Dirichlet
 // DOFs of ū are eliminated: free DOFs get equation numbers, in DOF order.
 //
@@ -21,7 +22,8 @@ namespace fe2 {
 
 class MacroSystem {
  public:
-  /// `pressure_field`: a P1 pressure on the vertices follows the displacement block.
+  /// `pressure_field`: a P1 pressure on the vertices (enriched by a constant per
+  /// element if spec.formulation.element_pressure) follows the displacement block.
   MacroSystem(const RunSpec& spec, bool pressure_field);
 
   // --- fields
@@ -29,9 +31,17 @@ class MacroSystem {
   int displacement_dofs() const { return 3 * num_nodes_; }
   bool has_pressure() const { return !pressure_of_node_.empty(); }
   int pressure_offset() const { return 3 * num_nodes_; }
-  int num_pressure() const { return static_cast<int>(vertex_of_pressure_.size()); }
+  /// All pressure unknowns: the vertices', then the elements' (enriched pressure).
+  int num_pressure() const { return num_vertex_pressures() + num_element_pressures_; }
+  int num_vertex_pressures() const { return static_cast<int>(vertex_of_pressure_.size()); }
   /// DOF of the pressure at mesh node `node` (a vertex).
   int pressure_dof(int node) const { return pressure_offset() + pressure_of_node_[node]; }
+  /// DOF of element e's constant pressure, or −1: none (P1 pressure, or the first
+  /// element, whose constant is the P1 constant less the others' and would make the
+  /// pressure field's basis linearly dependent).
+  int element_pressure_dof(int e) const {
+    return e > 0 && num_element_pressures_ > 0 ? pressure_offset() + num_vertex_pressures() + e - 1 : -1;
+  }
   /// Mesh node of pressure unknown j.
   int vertex_of_pressure(int j) const { return vertex_of_pressure_[j]; }
   /// Cavity pressures (RunSpec::coupled_cavities order), after the pressure field.
@@ -68,6 +78,7 @@ class MacroSystem {
   int num_nodes_;
   int num_dofs_;
   int num_cavities_ = 0;
+  int num_element_pressures_ = 0;
   int num_free_ = 0;
   std::vector<int> eq_;
   std::vector<int> prescribed_;

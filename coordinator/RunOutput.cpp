@@ -124,6 +124,7 @@ void RunOutput::write_fields(const Simulation& sim, const PointFields& fields, i
   }
   cell.add_tensor("P_bar", P_cell);
   cell.add_scalar("det_F", detF);
+  if (sim.spec().formulation.element_pressure) cell.add_scalar("pressure_element", sim.element_pressure());
   if (sim.spec().contracts()) cell.add_scalar("active_tension", Ta);
   cell.add_scalar("region", region);
   cell.add_scalar("model", model);

@@ -177,6 +177,13 @@ void read_formulation(SpecNode f, RunSpec& spec) {
           f.number("stabilization_modulus", std::nullopt, Range::positive(),
                    "μ_s (Pa) of the pressure-projection stabilization of equal-order P1/P1 "
                    "(required on linear meshes; about the tissue's shear modulus)");
+    fs.element_pressure = f.choice("pressure", "P1", {"P1", "P1+P0"},
+                                   "pressure space: continuous P1, or P1 enriched by a constant per "
+                                   "element (P2/(P1+P0): every element keeps its volume)") == "P1+P0";
+    if (fs.element_pressure && spec.mesh.order() == 1)
+      f.fail("pressure", fmt::format("'P1+P0' needs quadratic elements (P2/(P1+P0)); on the linear "
+                                     "mesh {} use 'P1' with a stabilization_modulus",
+                                     spec.mesh_source));
     // Equal-order P1/P1 violates the inf–sup condition: without stabilization the
     // pressure oscillates (checkerboard) and the Lagrange form is singular.
     if (spec.mesh.order() == 1 && fs.stabilization_modulus == 0.0)

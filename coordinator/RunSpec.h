@@ -65,6 +65,9 @@ struct FormulationSpec {
   /// Perturbed Lagrangian J̄ − 1 = −p/κ; +∞: Lagrange multiplier (J̄ = 1).
   double bulk_modulus = std::numeric_limits<double>::infinity();
   double stabilization_modulus = 0.0;  ///< μ_s of P1/P1 (0: none)
+  /// Pressure P1+P0 (enriched Taylor–Hood): a constant per element besides the P1
+  /// field, so each element's volume is held, not only P1-weighted means.
+  bool element_pressure = false;
   int quadrature_degree = -1;          ///< −1: 2(order − 1)
 };
 

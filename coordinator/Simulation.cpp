@@ -123,9 +123,16 @@ std::vector<double> Simulation::nodal_pressure() const {
   if (!system_.has_pressure()) return {};
   const TetMesh& m = spec_.mesh;
   std::vector<double> p(m.num_nodes(), 0.0);
-  for (int j = 0; j < system_.num_pressure(); ++j)
+  for (int j = 0; j < system_.num_vertex_pressures(); ++j)
     p[system_.vertex_of_pressure(j)] = x_[system_.pressure_offset() + j];
   for (const auto& [edge, node] : m.edge_nodes) p[node] = 0.5 * (p[edge.first] + p[edge.second]);
+  return p;
+}
+
+std::vector<double> Simulation::element_pressure() const {
+  std::vector<double> p(spec_.mesh.num_tets(), 0.0);
+  for (int e = 0; e < spec_.mesh.num_tets(); ++e)
+    if (system_.element_pressure_dof(e) >= 0) p[e] = x_[system_.element_pressure_dof(e)];
   return p;
 }
 
@@ -274,7 +281,7 @@ Simulation::Residual Simulation::converge(double t_new) {
   if (system_.has_pressure()) {
     // R_p has the units of volume: relative to the nodal volumes ∫N_p, it is the
     // volumetric strain J̄ − 1 (+ p/κ) the pressure has not yet removed.
-    const auto Rp = (f_int - f_ext).tail(system_.num_pressure());
+    const auto Rp = (f_int - f_ext).segment(system_.pressure_offset(), system_.num_pressure());
     res.volume = Rp.norm() / pressure_volumes_.norm();
   }
   for (int c = 0; c < system_.num_cavities(); ++c) {
@@ -294,13 +301,21 @@ void Simulation::solve(int iteration) {
   try {
     mumps_.factorize_and_solve(values_, du_);
   } catch (const SingularMatrixError& e) {
+    // The enriched pressure is inf–sup stable only where elements have free vertices
+    // (Boffi et al. 2012): say so, it is the likelier cause then.
+    const std::string why =
+        std::string(e.what()) +
+        (spec_.formulation.element_pressure
+             ? "; or the enriched pressure (formulation.pressure 'P1+P0'): elements whose vertices "
+               "are all prescribed leave pressure modes free (refine there, or use 'P1')"
+             : "");
     // Quasi-static iteration 1 assembles at the committed state (points have no rate
     // dependence yet): the same matrix whatever the step, so no cut-back can help.
     if (iteration == 1 && !spec_.dynamic)
-      throw SingularMatrixError(std::string(e.what()) + "; it is the matrix of the last "
-                                "converged state, so cutting the step back cannot help",
+      throw SingularMatrixError(why + "; it is the matrix of the last converged state, so cutting "
+                                "the step back cannot help",
                                 true);
-    throw;
+    throw SingularMatrixError(why, e.at_committed_state);
   }
   group_.bcast(du_.data(), system_.num_free(), 0);
 }

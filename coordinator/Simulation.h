@@ -102,6 +102,9 @@ class Simulation {
   /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
   /// ends, which is the P1 field there); empty without a pressure field.
   std::vector<double> nodal_pressure() const;
+  /// Per element, the constant of an enriched P1+P0 pressure (0 for the first element
+  /// and without enrichment): the total pressure is the nodal field plus this.
+  std::vector<double> element_pressure() const;
   /// Per point, the last P̄ in the global frame, gathered on coordinator 0.
   /// @note Collective.
   PointFields gather_point_fields() const;

@@ -128,6 +128,17 @@ void FollowerPressureTerm::assemble(const MacroState& state, MacroAssembly& out)
 }
 
 // ---------------------------------------------------------------------------------
+namespace {
+/// The element's pressure shape functions at barycentric point λ: the P1 hats λ_a, then
+/// the element's constant when the pressure is enriched (np = 5).
+Eigen::VectorXd pressure_basis(const Eigen::Vector4d& bary, int np) {
+  Eigen::VectorXd N(np);
+  N.head<4>() = bary;
+  if (np == 5) N[4] = 1.0;
+  return N;
+}
+}  // namespace
+
 IncompressibilityTerm::IncompressibilityTerm(const TetMesh& mesh, const MacroPoints& points,
                                              std::vector<int> owned_elements,
                                              const FormulationSpec& formulation)
@@ -137,7 +148,7 @@ void IncompressibilityTerm::declare(MacroSystem& system) {
   FE2_CHECK(system.has_pressure(), "the incompressibility term needs a pressure field");
   system_ = &system;
   volumes_ = Eigen::VectorXd::Zero(system.num_pressure());
-  // P1 mass on the (possibly curved) element with a degree-2 + geometry rule.
+  // Pressure mass on the (possibly curved) element with a degree-2 + geometry rule.
   const int order = mesh_.order();
   const auto rule = tet_rule(2 + 2 * (order - 1));
   Eigen::VectorXd N;
@@ -147,22 +158,32 @@ void IncompressibilityTerm::declare(MacroSystem& system) {
   for (int e : owned_) {
     const std::vector<int> nodes = mesh_.element_nodes(e);
     std::vector<int> dofs = displacement_dofs(nodes);
-    for (int a = 0; a < 4; ++a) dofs.push_back(system.pressure_dof(mesh_.tets[e][a]));
-    Eigen::Matrix4d M = Eigen::Matrix4d::Zero();
-    Eigen::Vector4d m = Eigen::Vector4d::Zero();
+    std::vector<int> pdofs;
+    for (int a = 0; a < 4; ++a) pdofs.push_back(system.pressure_dof(mesh_.tets[e][a]));
+    if (system.element_pressure_dof(e) >= 0) pdofs.push_back(system.element_pressure_dof(e));
+    const int np = static_cast<int>(pdofs.size());
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(np, np);
+    Eigen::VectorXd m = Eigen::VectorXd::Zero(np);
     for (const auto& q : rule) {
       tet_shape(order, q.bary, N, dN);
       Mat3 J = Mat3::Zero();
       for (size_t a = 0; a < nodes.size(); ++a) J += mesh_.nodes[nodes[a]] * dN.col(a).transpose();
       const double dV = q.weight * J.determinant();
-      M += dV * q.bary * q.bary.transpose();
-      m += dV * q.bary;
+      const Eigen::VectorXd Np = pressure_basis(q.bary, np);
+      M += dV * Np * Np.transpose();
+      m += dV * Np;
     }
-    const double volume = m.sum();
-    pressure_matrix_.push_back(-inv_kappa * M - inv_mu * (M - m * m.transpose() / volume));
-    for (int a = 0; a < 4; ++a) volumes_[system.pressure_dof(mesh_.tets[e][a]) - system.pressure_offset()] += m[a];
+    const double volume = m.head<4>().sum();
+    // Π₀ of the stabilization: the element mean of the P1 part (the constant of an
+    // enriched pressure is its own mean, untouched by the projection).
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(np, np);
+    S.topLeftCorner<4, 4>() = M.topLeftCorner<4, 4>() - m.head<4>() * m.head<4>().transpose() / volume;
+    pressure_matrix_.push_back(-inv_kappa * M - inv_mu * S);
+    for (int a = 0; a < np; ++a) volumes_[pdofs[a] - system.pressure_offset()] += m[a];
+    dofs.insert(dofs.end(), pdofs.begin(), pdofs.end());
     block_.push_back(system.declare_block(dofs));
     dofs_.push_back(std::move(dofs));
+    num_pressure_.push_back(np);
   }
 }
 
@@ -170,11 +191,12 @@ void IncompressibilityTerm::assemble(const MacroState& state, MacroAssembly& out
   for (size_t k = 0; k < owned_.size(); ++k) {
     const int e = owned_[k];
     const std::vector<int>& dofs = dofs_[k];
-    const int nu = static_cast<int>(dofs.size()) - 4;
+    const int np = num_pressure_[k];
+    const int nu = static_cast<int>(dofs.size()) - np;
     const Eigen::VectorXd xe = gather(state.x, dofs);
-    const Eigen::Vector4d pe = xe.tail<4>();
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nu + 4, nu + 4);
-    Eigen::VectorXd R = Eigen::VectorXd::Zero(nu + 4);
+    const Eigen::VectorXd pe = xe.tail(np);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nu + np, nu + np);
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(nu + np);
     for (int q = points_.first_point(e); q < points_.first_point(e + 1); ++q) {
       const MacroPoint& pt = points_[q];
       const Vec9 Z = pt.B * xe.head(nu);
@@ -185,7 +207,8 @@ void IncompressibilityTerm::assemble(const MacroState& state, MacroAssembly& out
                                          e, state.time, J));
       const Mat3 cof_m = J * F.inverse().transpose();
       const Vec9 cof = Eigen::Map<const Vec9>(cof_m.data());  // column-major, as Z̄
-      const double p = pt.bary.dot(pe);
+      const Eigen::VectorXd Np = pressure_basis(pt.bary, np);
+      const double p = Np.dot(pe);
       Mat9 dcof;  // ∂cof_iJ/∂F_kL = (cof_iJ cof_kL − cof_iL cof_kJ)/J
       for (int i = 0; i < 3; ++i)
         for (int Jc = 0; Jc < 3; ++Jc)
@@ -195,13 +218,13 @@ void IncompressibilityTerm::assemble(const MacroState& state, MacroAssembly& out
                   (cof_m(i, Jc) * cof_m(kk, L) - cof_m(i, L) * cof_m(kk, Jc)) / J;
       const Eigen::VectorXd Bt_cof = pt.B.transpose() * cof;
       R.head(nu) -= pt.volume * p * Bt_cof;
-      R.tail<4>() -= pt.volume * (J - 1.0) * pt.bary;
+      R.tail(np) -= pt.volume * (J - 1.0) * Np;
       K.topLeftCorner(nu, nu).noalias() -= (pt.volume * p) * pt.B.transpose() * dcof * pt.B;
-      K.topRightCorner(nu, 4).noalias() -= pt.volume * Bt_cof * pt.bary.transpose();
+      K.topRightCorner(nu, np).noalias() -= pt.volume * Bt_cof * Np.transpose();
     }
-    K.bottomLeftCorner(4, nu) = K.topRightCorner(nu, 4).transpose();
-    K.bottomRightCorner<4, 4>() = pressure_matrix_[k];
-    R.tail<4>() += pressure_matrix_[k] * pe;
+    K.bottomLeftCorner(np, nu) = K.topRightCorner(nu, np).transpose();
+    K.bottomRightCorner(np, np) = pressure_matrix_[k];
+    R.tail(np) += pressure_matrix_[k] * pe;
     out.add_tangent(block_[k], K);
     out.add_internal(dofs, R);
   }

@@ -82,7 +82,8 @@ class FollowerPressureTerm final : public MacroTerm {
   std::vector<std::vector<int>> dofs_;
 };
 
-/// Mixed u–p (a P1 pressure p on the vertices, positive in compression), for any point
+/// Mixed u–p (a P1 pressure p on the vertices, positive in compression; enriched: plus a
+/// constant per element, P2/(P1+P0), so ∫_e (J̄ − 1) = 0 on every element), for any point
 /// model: the point's P̄ and 𝔸 enter unchanged and this term adds, from
 ///   Π(ū, p) = ∫ W − ∫ p (J̄ − 1) − ∫ p²/(2κ)      (κ = ∞: Lagrange multiplier)
 /// at the same quadrature points:
@@ -108,8 +109,9 @@ class IncompressibilityTerm final : public MacroTerm {
   FormulationSpec formulation_;
   const MacroSystem* system_ = nullptr;
   std::vector<int> block_;
-  std::vector<std::vector<int>> dofs_;     ///< ū DOFs then the 4 vertex pressures
-  std::vector<Eigen::Matrix4d> pressure_matrix_;  ///< −M/κ − S/μ_s per element
+  std::vector<std::vector<int>> dofs_;     ///< ū DOFs then the 4 vertex pressures (+ its constant)
+  std::vector<int> num_pressure_;          ///< pressure unknowns per element: 4, or 5 (P1+P0)
+  std::vector<Eigen::MatrixXd> pressure_matrix_;  ///< −M/κ − S/μ_s per element
   Eigen::VectorXd volumes_;
 };
 

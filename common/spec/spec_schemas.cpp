@@ -275,6 +275,9 @@ Schema make_run_spec_schema() {
                    optional(number(nullopt, Range::positive(),
                                    "κ (Pa) of the perturbed Lagrangian J̄ − 1 = −p/κ; absent: a "
                                    "Lagrange multiplier, J̄ = 1 exactly"))},
+                  {"pressure", choice("P1", {"P1", "P1+P0"},
+                                      "pressure space: continuous P1, or P1 enriched by a constant per "
+                                      "element (P2/(P1+P0): every element keeps its volume)")},
                   {"stabilization_modulus",
                    optional(number(nullopt, Range::positive(),
                                    "μ_s (Pa) of the pressure-projection stabilization of equal-order "
