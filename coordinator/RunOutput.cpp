@@ -19,7 +19,7 @@ bool is_run_output_file(const std::string& name) {
   static const std::regex own(
       "(summary\\.json|spec\\.json|fe2heart\\.log|displacement\\.pvd|displacement_[0-9]+\\.vtu|"
       "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png|"
-      "pv_curve\\.png|pv_loop\\.png|circulation\\.csv)"
+      "pv_curve\\.png|pv_loop\\.png|pv_time\\.png|circulation\\.csv)"
       "(\\.tmp)?");
   return std::regex_match(name, own);
 }

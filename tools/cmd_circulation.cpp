@@ -80,8 +80,8 @@ int circulation(const CirculationOptions& o) {
   // The picture; a missing matplotlib costs only the PNG.
   const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_LOOP_SCRIPT, o.out);
   if (std::system(cmd.c_str()) != 0)
-    spdlog::warn("no pv_loop.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
-  spdlog::info("results: {}/summary.json, {}/circulation.csv, {}/pv_loop.png ({:.2f} s)", o.out, o.out,
+    spdlog::warn("no pv_loop.png, pv_time.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+  spdlog::info("results: {0}/summary.json, {0}/circulation.csv, {0}/pv_loop.png, {0}/pv_time.png ({1:.2f} s)",
                o.out, seconds);
   return 0;
 }

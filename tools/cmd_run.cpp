@@ -269,7 +269,7 @@ int run(const RunOptions& o) {
     if (output && spec.circulation && result.steps > 0) {
       const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_LOOP_SCRIPT, o.out);
       if (std::system(cmd.c_str()) != 0)
-        spdlog::warn("no pv_loop.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+        spdlog::warn("no pv_loop.png, pv_time.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
     }
     if (!result.converged) {
       spdlog::error("run stopped: {}", result.error);

@@ -50,7 +50,7 @@ TEST(RunOutput, RunFilesAreRecognizedByName) {
   for (const char* own : {"summary.json", "spec.json", "fe2heart.log", "displacement.pvd",
                           "displacement_00000.vtu", "displacement_12345.vtu", "trace_units.jsonl",
                           "trace_iterations.jsonl", "summary.json.tmp", "gantt.png", "imbalance.png",
-                          "pv_curve.png", "pv_loop.png", "circulation.csv"})
+                          "pv_curve.png", "pv_loop.png", "pv_time.png", "circulation.csv"})
     EXPECT_TRUE(is_run_output_file(own)) << own;
   for (const char* other : {"notes.txt", "my_summary.json", "displacement_x.vtu", "mesh.vtu",
                             "spec.json.bak", "fe2heart.log.1", "heart.msh", "plot.png"})
