@@ -157,6 +157,43 @@ void read_frame(SpecNode f, RunSpec& spec) {
   f.finish();
 }
 
+/// Every cell model's calcium period under /models (the JSON pointer of each "active"
+/// object and its calcium.period; absent: 0, one beat).
+void collect_calcium_periods(const json& node, const std::string& path,
+                             std::vector<std::pair<std::string, double>>& out) {
+  if (!node.is_object()) return;
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const std::string here = path + "/" + it.key();
+    if (it.key() == "active" && it.value().is_object()) {
+      const json& a = it.value();
+      double period = 0.0;
+      if (a.contains("calcium") && a["calcium"].is_object() && a["calcium"].contains("period") &&
+          a["calcium"]["period"].is_number())
+        period = a["calcium"]["period"].get<double>();
+      out.emplace_back(here + "/calcium/period", period);
+    } else {
+      collect_calcium_periods(it.value(), here, out);
+    }
+  }
+}
+
+/// A run of several heartbeats whose cells beat at another rhythm than the circulation
+/// (or once only) is legal but almost never meant: the valves open to a heart that does
+/// not contract, or contracts mid-filling.
+void warn_on_calcium_period(RunSpec& spec) {
+  const double period = spec.circulation->period();
+  if (spec.t_end <= period * (1 + 1e-9)) return;  // one beat: the cells' period plays no part
+  std::vector<std::pair<std::string, double>> periods;
+  collect_calcium_periods(spec.raw.value("models", json::object()), "/models", periods);
+  for (const auto& [where, p] : periods)
+    if (std::abs(p - period) > 1e-9 * period)
+      spec.warnings.push_back(fmt::format(
+          "{}: {} but the circulation's period is {} s and the run lasts {:.3g} periods: the cells {}; "
+          "set it to {} to make them beat with the circulation",
+          where, p == 0.0 ? std::string("absent (one beat)") : fmt::format("{} s", p), period,
+          spec.t_end / period, p == 0.0 ? "contract once" : "beat out of step with the valves", period));
+}
+
 void read_formulation(SpecNode f, RunSpec& spec) {
   FormulationSpec& fs = spec.formulation;
   fs.mixed = f.choice("kind", "displacement", {"displacement", "mixed"},
@@ -405,6 +442,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
       spec.t_end = spec.beats * spec.circulation->period();
       spec.steps = spec.beats * spec.steps_per_beat;
     }
+    warn_on_calcium_period(spec);
     for (const auto& ps : spec.pressure)
       for (int c : spec.coupled_cavities)
         if (ps.surface == spec.cavities[c].second)

@@ -109,6 +109,8 @@ struct RunSpec {
   uint64_t hash = 0;              ///< of the spec's canonical text (ranks compare it)
 
   std::vector<std::pair<std::string, Vec3>> probes;
+  /// Legal but likely unintended settings, for the log (`run`, `validate`).
+  std::vector<std::string> warnings;
   std::vector<std::pair<std::string, std::string>> cavities;  ///< (name, bounding face)
   /// The 0D circulation ("circulation"; null: none) and, per circulation cavity, its
   /// index in `cavities`: those cavities' pressures are unknowns of the macro system.

@@ -151,6 +151,7 @@ int validate(const std::string& file, const std::string& memory_limit_text) {
   }
   fmt::print("{}: OK: {}; unit memory ≈ {} on one rank (limit {})\n", file, describe(spec),
              format_bytes(one_rank), format_bytes(limit.bytes));
+  for (const std::string& w : spec.warnings) fmt::print("warning: {}\n", w);
   return 0;
 }
 
@@ -215,6 +216,7 @@ int run(const RunOptions& o) {
       log_open = true;
       spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
       spdlog::info("{}", describe(spec));
+      for (const std::string& w : spec.warnings) spdlog::warn("{}", w);
       for (const auto& m : spec.models) {
         if (m.material) spdlog::info("model {}: {}", m.name, m.material->description());
         if (m.plan)

@@ -205,3 +205,27 @@ TEST(HardPhysiology, DefaultMacroBeatEjectsAPhysiologicalFraction) {
 
 }  // namespace
 }  // namespace fe2
+
+namespace fe2 {
+namespace {
+
+// Several beats whose cells beat once, or at another period, get a warning naming the
+// key; cells in step with the circulation, or a single beat, get none.
+TEST(CirculationCoupling, CellsOutOfStepWithTheCirculationAreWarnedAbout) {
+  const std::string key = "/models/myocardium/material/active/calcium/period";
+  EXPECT_TRUE(read_run_spec(lv_beat(8, 0.8), "").warnings.empty());  // one beat
+  const RunSpec once = read_run_spec(lv_beat(24, 2.4), "");
+  ASSERT_EQ(once.warnings.size(), 1u);
+  EXPECT_NE(once.warnings[0].find(key + ": absent (one beat) but the circulation's period is 0.8 s"), std::string::npos)
+      << once.warnings[0];
+  json j = lv_beat(24, 2.4);
+  j["models"]["myocardium"]["material"]["active"]["calcium"] = {{"period", 0.7}};
+  const RunSpec fast = read_run_spec(j, "");
+  ASSERT_EQ(fast.warnings.size(), 1u);
+  EXPECT_NE(fast.warnings[0].find(key + ": 0.7 s"), std::string::npos) << fast.warnings[0];
+  j["models"]["myocardium"]["material"]["active"]["calcium"]["period"] = 0.8;
+  EXPECT_TRUE(read_run_spec(j, "").warnings.empty());
+}
+
+}  // namespace
+}  // namespace fe2
