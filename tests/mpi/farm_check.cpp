@@ -67,6 +67,30 @@ double displacement_scale(const json& summary, const json& spec, const std::stri
   }
   return m;
 }
+/// A coupled run's pressure–volume loop: the largest difference over the steps of every
+/// cavity volume and circulation pressure, relative to the largest volume (pressure) of
+/// the reference. −1 when the runs have no cavities.
+double compare_pv_loop(const json& ref, const json& out, bool& same_shape) {
+  const json &a = ref["history"], &b = out["history"];
+  if (a.empty() || !a[0].contains("cavity_volumes")) return -1.0;
+  if (a.size() != b.size()) {
+    std::cerr << "the runs have " << a.size() << " and " << b.size() << " steps\n";
+    same_shape = false;
+    return INFINITY;
+  }
+  double d = 0.0;
+  for (const char* key : {"cavity_volumes", "compartment_pressures"}) {
+    double scale = 0.0;
+    for (const json& h : a)
+      if (h.contains(key))
+        for (const auto& v : h[key]) scale = std::max(scale, std::abs(v.get<double>()));
+    for (size_t s = 0; s < a.size(); ++s)
+      if (a[s].contains(key))
+        d = std::max(d, compare(a[s][key], b[s].value(key, json()), std::string("history/") + std::to_string(s) + "/" + key,
+                                scale, same_shape));
+  }
+  return d;
+}
 
 }  // namespace
 
@@ -92,7 +116,11 @@ int main(int argc, char** argv) {
       std::printf("history (residuals, iterations): %s\n", d_hist == 0.0 ? "identical" : "differs");
       ok = ok && d_hist == 0.0;
     }
-    ok = ok && shape && d_probes <= tol && same_iterations && t.migrations >= min_migrations;
+    const double d_pv = compare_pv_loop(ref, out, shape);
+    if (d_pv >= 0)
+      std::printf("pressure-volume loop: max difference %.3e of the largest volume / pressure (tolerance %.1e)\n",
+                  d_pv, tol);
+    ok = ok && shape && d_probes <= tol && d_pv <= tol && same_iterations && t.migrations >= min_migrations;
     std::printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
   }
