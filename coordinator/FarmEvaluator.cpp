@@ -210,6 +210,37 @@ void FarmEvaluator::rollback_step() {
   if (store_) store_->rollback();
 }
 
+std::vector<proto::UnitFields> FarmEvaluator::unit_fields(const std::vector<int>& units, int step) {
+  // Every coordinator knows the placement (rebalance plans are broadcast), so each
+  // holder answers without being asked twice; only pure workers need the request.
+  proto::Control c;
+  c.command = proto::Command::fields;
+  c.step = step;
+  for (int u : units) c.moves.push_back({u, placement_.at(static_cast<size_t>(u)), 0});
+  send_to_pure_workers(c);
+  const int me = transport_.rank();
+  if (store_ && me != 0) send_unit_fields(transport_, *store_, c.moves, step);
+  std::vector<proto::UnitFields> out;
+  if (me != 0) return out;
+  out.resize(units.size());
+  std::vector<int> index(placement_.size(), -1);
+  for (size_t k = 0; k < units.size(); ++k) {
+    index[static_cast<size_t>(units[k])] = static_cast<int>(k);
+    if (c.moves[k].from == 0) out[k] = store_->fields(units[k], step);
+  }
+  for (const proto::Move& m : c.moves) {
+    if (m.from == 0) continue;
+    int from = -1;
+    proto::UnitFields f = proto::UnitFields::unpack(transport_.recv(proto::Type::unit_fields, MPI_ANY_SOURCE, &from));
+    FE2_CHECK(f.unit >= 0 && static_cast<size_t>(f.unit) < index.size() && index[f.unit] >= 0 &&
+                  placement_[f.unit] == from && f.step == step,
+              "rank {} sent the fields of unit {} at step {}; expected one of the units it holds "
+              "at step {}", from, f.unit, f.step, step);
+    out[index[f.unit]] = std::move(f);
+  }
+  return out;
+}
+
 void FarmEvaluator::shutdown() {
   proto::Control c;
   c.command = proto::Command::shutdown;

@@ -32,6 +32,9 @@ class FarmEvaluator final : public PointEvaluator {
                 std::vector<proto::JobOutput>& out) override;
   void commit_step() override;
   void rollback_step() override;
+  /// Coordinator 0 asks each unit's holder (itself, another coordinator that works, or a
+  /// pure worker by a Control 'fields') to send it the unit's fields.
+  std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
   /// Rank 0: tells every pure worker to stop.
   void shutdown();
 

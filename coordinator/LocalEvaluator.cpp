@@ -1,5 +1,8 @@
 #include "coordinator/PointEvaluator.h"
 
+#include "common/error.h"
+#include "worker/unit_fields.h"
+
 namespace fe2 {
 
 LocalEvaluator::LocalEvaluator(const std::vector<PointModelSpec>& models,
@@ -20,6 +23,17 @@ void LocalEvaluator::commit_step() {
 
 void LocalEvaluator::rollback_step() {
   for (auto& p : points_) p->rollback_step();
+}
+
+std::vector<proto::UnitFields> LocalEvaluator::unit_fields(const std::vector<int>& units, int step) {
+  std::vector<proto::UnitFields> out;
+  for (int u : units) {
+    FE2_CHECK(u >= 0 && u < size(), "fields of unit {}: there are {} points", u, size());
+    const auto* micro = dynamic_cast<const MicroUnit*>(points_[u].get());
+    FE2_CHECK(micro, "fields of unit {}: a {} point has no micro fields", u, points_[u]->kind());
+    out.push_back(micro_fields(*micro, u, step));
+  }
+  return out;
 }
 
 }  // namespace fe2

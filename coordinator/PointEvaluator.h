@@ -3,6 +3,7 @@
 // out, indexed by point. The one-process form (LocalEvaluator) runs the points in a
 // loop; the MPI task farm implements the same interface across worker ranks.
 #include "proto/job.h"
+#include "proto/messages.h"
 #include "worker/point_models.h"
 
 #include <vector>
@@ -17,6 +18,11 @@ class PointEvaluator {
                         std::vector<proto::JobOutput>& out) = 0;
   virtual void commit_step() = 0;
   virtual void rollback_step() = 0;
+  /// The micro fields of FE² units `units` (output.units) at the state of the last
+  /// evaluate, labelled output step `step`: call after a step's converged iteration and
+  /// before commit_step (worker/unit_fields.h). In `units` order on the first
+  /// coordinator, empty on the others. @note Collective on the coordinator group.
+  virtual std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) = 0;
 };
 
 /// All points on this process, evaluated in order.
@@ -28,6 +34,7 @@ class LocalEvaluator final : public PointEvaluator {
                 std::vector<proto::JobOutput>& out) override;
   void commit_step() override;
   void rollback_step() override;
+  std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
   PointModel& point(int k) { return *points_[k]; }
   int size() const { return static_cast<int>(points_.size()); }
 

@@ -19,7 +19,8 @@ bool is_run_output_file(const std::string& name) {
   static const std::regex own(
       "(summary\\.json|spec\\.json|fe2heart\\.log|displacement\\.pvd|displacement_[0-9]+\\.vtu|"
       "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png|"
-      "pv_curve\\.png|pv_loop\\.png|pv_time\\.png|circulation\\.csv)"
+      "pv_curve\\.png|pv_loop\\.png|pv_time\\.png|circulation\\.csv|"
+      "units/unit_[0-9]+\\.pvd|units/unit_[0-9]+_[0-9]+\\.vtu)"
       "(\\.tmp)?");
   return std::regex_match(name, own);
 }
@@ -32,6 +33,12 @@ std::vector<std::string> run_output_files(const std::string& dir) {
     const std::string name = e.path().filename().string();
     if (e.is_regular_file(ec) && is_run_output_file(name)) names.push_back(name);
   }
+  std::error_code absent;  // a missing units/ is no error
+  if (!ec && fs::is_directory(fs::path(dir) / "units", absent))  // output.units (UnitOutput)
+    for (const auto& e : fs::directory_iterator(fs::path(dir) / "units", ec)) {
+      const std::string name = "units/" + e.path().filename().string();
+      if (e.is_regular_file(ec) && is_run_output_file(name)) names.push_back(name);
+    }
   if (ec)
     throw InputError(fmt::format("--out '{}': cannot list the output folder ({})", dir, ec.message()));
   std::sort(names.begin(), names.end());
@@ -264,6 +271,18 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                           {"figures_over", t_end >= period * (1 - 1e-9) ? "the last period" : "the whole run (shorter than a period)"},
                           {"period", period},
                           {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
+      // Systole: the step of peak LV pressure in the window ("lv", else the first cavity),
+      // numbered as displacement_<step>.vtu and units/unit_<id>_<step>.vtu are.
+      const auto& names = c.cavity_names();
+      const size_t lv = std::find(names.begin(), names.end(), "lv") != names.end()
+                            ? static_cast<size_t>(std::find(names.begin(), names.end(), "lv") - names.begin())
+                            : 0;
+      size_t systole = first;
+      for (size_t i = first; i < run.size(); ++i)
+        if (run[i].p[lv] > run[systole].p[lv]) systole = i;
+      s["circulation"]["systole_step"] = systole;
+      s["circulation"]["systole_time"] = run[systole].t;
+      s["circulation"]["systole_cavity"] = names[lv];
     }
     if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(c, run));
   }

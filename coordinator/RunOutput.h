@@ -18,10 +18,12 @@ namespace fe2 {
 /// Whether `name` (a file name, no folder) is one of the files a run or `fe2heart
 /// trace plot` writes into a run folder (summary.json, spec.json, fe2heart.log,
 /// displacement.pvd, displacement_NNNNN.vtu, trace_*.jsonl, the trace PNGs, and the
-/// ".tmp" names they are written under).
+/// ".tmp" names they are written under), or, as "units/<name>", one of the unit files
+/// of output.units in the units/ subfolder (unit_K.pvd, unit_K_NNNNN.vtu).
 bool is_run_output_file(const std::string& name);
 
-/// The run-output files in `dir` (sorted names; empty if `dir` does not exist).
+/// The run-output files in `dir` and its units/ subfolder (sorted names relative to
+/// `dir`; empty if `dir` does not exist).
 std::vector<std::string> run_output_files(const std::string& dir);
 
 /// Refuses an output folder that holds an earlier run: "different run" means any

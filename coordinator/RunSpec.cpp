@@ -12,6 +12,7 @@
 #include "coordinator/MacroPoints.h"
 #include "common/spec/spec_schemas.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
@@ -308,6 +309,40 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec, bool build_uni
 
 }  // namespace
 
+
+namespace {
+
+/// output.units: distinct ids of points that are FE² units (a macro-law point has no
+/// micro mesh to write).
+std::vector<int> read_output_units(SpecNode& out, const RunSpec& spec) {
+  const json* v = out.declared_value("units", "array of unit ids",
+                                     "FE² units (integration point ids) whose micro fields "
+                                     "are written at every output step, into units/");
+  std::vector<int> units;
+  if (!v) return units;
+  const int n = spec.num_points();
+  const std::string ids = fmt::format("an array of distinct FE² unit ids (integration points 0 to {})", n - 1);
+  if (!v->is_array()) out.fail("units", ids);
+  const std::vector<int> model = spec.model_of_points();
+  for (const json& x : *v) {
+    if (!x.is_number_integer() || x.get<long long>() < 0 || x.get<long long>() >= n)
+      throw InputError(fmt::format("{}: unit {} is not an integration point; expected {}",
+                                   out.key_path("units"), x.dump(), ids));
+    const int u = x.get<int>();
+    const PointModelSpec& m = spec.models[static_cast<size_t>(model[static_cast<size_t>(u)])];
+    if (m.kind != PointModelSpec::Kind::fe2)
+      throw InputError(fmt::format("{}: unit {} uses model '{}', a macro law with no micro mesh; "
+                                   "expected a point of an FE² model (kind fe2)",
+                                   out.key_path("units"), u, m.name));
+    if (std::find(units.begin(), units.end(), u) != units.end())
+      throw InputError(fmt::format("{}: unit {} is listed twice; expected {}", out.key_path("units"), u, ids));
+    units.push_back(u);
+  }
+  return units;
+}
+
+}  // namespace
+
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool build_units) {
   RunSpec spec;
   spec.file = file;
@@ -473,6 +508,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   SpecNode out = root.child("output", false, "results");
   spec.output_every = out.integer("every", 1, Range::closed(1, 1e7), "write every k-th step");
   spec.write_vtu = out.boolean("vtu", true, "write VTU/PVD for ParaView");
+  spec.output_units = read_output_units(out, spec);
   out.finish();
   root.finish();
   const std::string canonical = j.dump();

@@ -118,6 +118,8 @@ struct RunSpec {
   std::vector<int> coupled_cavities;
   int output_every = 1;
   bool write_vtu = true;
+  /// output.units: points (FE² units) whose micro fields are written at output steps.
+  std::vector<int> output_units;
 
   int model_index_of_tet(int e) const;
   /// Whether some point model has contracting cells (active stress).

@@ -442,6 +442,10 @@ bool Simulation::beat_is_periodic(RunResult& result) const {
   return spec_.periodic_tolerance > 0.0 && change < spec_.periodic_tolerance;
 }
 
+bool Simulation::is_output_step(int step) const {
+  return (step + 1) % spec_.output_every == 0 || step + 1 == spec_.steps;
+}
+
 RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_iteration) {
   on_iteration_ = on_iteration;
   RunResult result;
@@ -479,6 +483,11 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
         why = e.what();
       }
       if (ok) {
+        // The units' fields of an output step, from the converged state before it
+        // becomes the committed one (worker/unit_fields.h).
+        if (!spec_.output_units.empty() && is_output_step(step) &&
+            t_new >= t_target - 1e-12 * spec_.t_end)
+          unit_fields_ = evaluator_.unit_fields(spec_.output_units, step + 1);
         commit(t_new, t_new - t_n_);
         continue;
       }

@@ -115,6 +115,11 @@ class Simulation {
   std::vector<double> cavity_volumes() const;
   /// Deformed position of a reference point inside the mesh.
   Vec3 deformed_position(const Vec3& X) const;
+  /// output.units: the chosen units' micro fields at the end of the last output step
+  /// (on the first coordinator; Simulation::run takes them before the step's commit).
+  const std::vector<proto::UnitFields>& unit_fields() const { return unit_fields_; }
+  /// Whether step `step` (from 0) writes output: every output.every-th and the last.
+  bool is_output_step(int step) const;
   /// The circulation coupling, or null (no "circulation" in the spec).
   const CavityPressureTerm* cavity_term() const { return cavity_term_; }
 
@@ -174,6 +179,7 @@ class Simulation {
   std::vector<double> du_;             ///< Newton correction on the free equations
   std::unique_ptr<MacroAssembly> assembly_;
   IterationHook on_iteration_;
+  std::vector<proto::UnitFields> unit_fields_;
 };
 
 }  // namespace fe2

@@ -1,5 +1,6 @@
 #include "proto/messages.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace fe2::proto {
@@ -35,6 +36,7 @@ const char* name_of(Type t) {
     case Type::stats: return "Stats";
     case Type::state: return "State";
     case Type::costs: return "Costs";
+    case Type::unit_fields: return "Fields";
   }
   return "unknown";
 }
@@ -165,7 +167,7 @@ Control Control::unpack(const Bytes& in) {
   check_header(r, Type::control);
   Control c;
   const auto cmd = r.get<uint8_t>();
-  if (cmd < 1 || cmd > 5) throw Error(fmt::format("Control message: unknown command {}", cmd));
+  if (cmd < 1 || cmd > kLastCommand) throw Error(fmt::format("Control message: unknown command {}", cmd));
   c.command = static_cast<Command>(cmd);
   c.step = r.get<int32_t>();
   c.iteration = r.get<int32_t>();
@@ -256,6 +258,52 @@ UnitState UnitState::unpack(const Bytes& in) {
   finish(r);
   if (s.unit < 0) throw Error(fmt::format("State message: unit {}", s.unit));
   return s;
+}
+
+void UnitFields::pack(Bytes& out) const {
+  ByteWriter w(out);
+  header(w, Type::unit_fields);
+  w.put(unit);
+  w.put(step);
+  w.put_raw(Zbar.data(), 9 * sizeof(double));
+  w.put_raw(P_bar.data(), 9 * sizeof(double));
+  w.put<uint8_t>(active);
+  w.put_array(this->w.data(), this->w.size());
+  w.put_array(P.data(), P.size());
+  w.put_array(det_F.data(), det_F.size());
+  w.put_array(active_tension.data(), active_tension.size());
+}
+
+UnitFields UnitFields::unpack(const Bytes& in) {
+  ByteReader r(in, "Fields message");
+  check_header(r, Type::unit_fields);
+  UnitFields f;
+  f.unit = r.get<int32_t>();
+  f.step = r.get<int32_t>();
+  r.get_raw(f.Zbar.data(), 9 * sizeof(double));
+  r.get_raw(f.P_bar.data(), 9 * sizeof(double));
+  const auto active = r.get<uint8_t>();
+  f.active = active != 0;
+  f.w = r.get_array<double>();
+  f.P = r.get_array<double>();
+  f.det_F = r.get_array<double>();
+  f.active_tension = r.get_array<double>();
+  finish(r);
+  const size_t m = f.det_F.size();
+  auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (f.unit < 0 || f.step < 0 || active > 1 || f.w.empty() || f.w.size() % 3 != 0 || m == 0 ||
+      f.P.size() != 9 * m || f.active_tension.size() != m)
+    throw Error(fmt::format("Fields message: invalid fields (unit {}, step {}, active {}, {} w "
+                            "values, {} P values, {} det F, {} T_a; expected 3 per node, 9, 1 and "
+                            "1 per cell)",
+                            f.unit, f.step, active, f.w.size(), f.P.size(), m,
+                            f.active_tension.size()));
+  if (!f.Zbar.allFinite() || !f.P_bar.allFinite() || !finite(f.w) || !finite(f.P) ||
+      !finite(f.det_F) || !finite(f.active_tension))
+    throw Error(fmt::format("Fields message: non-finite value in the fields of unit {}", f.unit));
+  return f;
 }
 
 JobCost JobCost::of(const JobOutput& o) {

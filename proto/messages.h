@@ -11,6 +11,9 @@
 //   Stats    WorkerStats (fixed-size record)
 //   State    i32 unit | u64 n | n bytes (a unit's serialized state)
 //   Costs    i32 step | i32 iteration | u64 n | n × JobCost   (coordinator k -> 0, gathered)
+//   Fields   i32 unit | i32 step | 9 f64 Z̄ | 9 f64 P̄ | u8 active |
+//            u64 3n, 3n f64 w per node | u64 9m, 9m f64 P per cell |
+//            u64 m, m f64 det F per cell | u64 m, m f64 T_a per cell   (holder -> rank 0)
 //   JobInput  = i32 unit, step, iteration | f64 time, dt | u8 apply_update, force_refresh |
 //               9 f64 Z̄ | 9 f64 Ż̄ | f64 ∂Ż̄/∂Z̄ | f64 t_act             (kJobInputBytes)
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
@@ -29,7 +32,8 @@
 
 namespace fe2::proto {
 
-enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6, costs = 7 };
+enum class Type : uint16_t { hello = 1, control = 2, pull = 3, batch = 4, stats = 5, state = 6, costs = 7,
+                            unit_fields = 8 };
 
 /// The message type's name, as errors print it ("Pull", "Batch", ...).
 const char* name_of(Type t);
@@ -51,7 +55,11 @@ struct Hello {
   static Hello unpack(const Bytes& in);
 };
 
-enum class Command : uint8_t { iterate = 1, commit = 2, rollback = 3, rebalance = 4, shutdown = 5 };
+/// `fields`: after a step's converged iteration and before its commit, the holder of
+/// each unit in `moves` (unit, from = holder, to = rank 0) sends it its UnitFields.
+enum class Command : uint8_t { iterate = 1, commit = 2, rollback = 3, rebalance = 4, shutdown = 5,
+                               fields = 6 };
+constexpr uint8_t kLastCommand = 6;
 
 struct Move {
   int32_t unit, from, to;
@@ -61,7 +69,7 @@ struct Control {
   Command command = Command::shutdown;
   int32_t step = 0, iteration = 0;
   double time = 0.0, dt = 0.0;
-  std::vector<Move> moves;  ///< rebalance only
+  std::vector<Move> moves;  ///< rebalance (units to move) and fields (units to report)
   void pack(Bytes& out) const;
   static Control unpack(const Bytes& in);
 };
@@ -104,6 +112,28 @@ struct UnitState {
   Bytes state;
   void pack(Bytes& out) const;
   static UnitState unpack(const Bytes& in);
+};
+
+/// A micro unit's fields at the converged state of a step (paper Fig. 11), in the unit's
+/// own frame: the fluctuation w at every micro mesh node (0 at the pinned node;
+/// displacement = Z̄·X + w), and per micro element the volume mean of the first
+/// Piola stress over its Gauss points, the mean det F and (when the unit's cells
+/// contract) the mean T_a. The cell volume average of P equals P̄.
+struct UnitFields {
+  int32_t unit = -1;
+  int32_t step = 0;               ///< output step (1 = after the first time step)
+  Vec9 Zbar = Vec9::Zero();       ///< Z̄_μ of the state
+  Vec9 P_bar = Vec9::Zero();      ///< ⟨Π⟩ the unit reported for it
+  bool active = false;            ///< some cell contracts (active_tension is meaningful)
+  std::vector<double> w;          ///< 3 per node, node after node
+  std::vector<double> P;          ///< 9 per cell (column-major, as Vec9)
+  std::vector<double> det_F;      ///< 1 per cell
+  std::vector<double> active_tension;  ///< 1 per cell (Pa), 0 outside contracting cells
+  int nodes() const { return static_cast<int>(w.size() / 3); }
+  int cells() const { return static_cast<int>(det_F.size()); }
+  void pack(Bytes& out) const;
+  /// Checks sizes agree (3n, 9m, m, m) and every number is finite.
+  static UnitFields unpack(const Bytes& in);
 };
 
 /// What the scheduler's cost model and the unit trace need of one job: a JobOutput

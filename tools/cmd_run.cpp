@@ -7,6 +7,7 @@
 #include "coordinator/FarmLayout.h"
 #include "coordinator/RunOutput.h"
 #include "coordinator/RunSpec.h"
+#include "coordinator/UnitOutput.h"
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
@@ -35,8 +36,9 @@ std::string describe(const RunSpec& spec) {
                      "{} micro DOF in all), {} steps{}",
                      spec.mesh.num_nodes(), spec.mesh.num_tets(), order == 1 ? 4 : 10,
                      !mixed ? fmt::format("displacement P{}", order)
-                            : order == 2 ? std::string("mixed Taylor–Hood P2/P1")
-                                         : std::string("mixed stabilized P1/P1"),
+                     : spec.formulation.element_pressure ? std::string("mixed enriched Taylor–Hood P2/(P1+P0)")
+                     : order == 2                        ? std::string("mixed Taylor–Hood P2/P1")
+                                                         : std::string("mixed stabilized P1/P1"),
                      spec.num_points(), spec.points_per_element, units, dofs, spec.steps,
                      spec.dynamic ? ", Newmark dynamics" : ", quasi-static");
 }
@@ -205,9 +207,11 @@ int run(const RunOptions& o) {
       return 0;
     }
     std::unique_ptr<RunOutput> output;
+    std::unique_ptr<UnitOutput> unit_output;
     std::unique_ptr<Trace> trace;
     if (rank == 0) {
       output = std::make_unique<RunOutput>(o.out, spec);
+      unit_output = std::make_unique<UnitOutput>(o.out, spec);
       trace = std::make_unique<Trace>(o.out);
       auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
       spdlog::default_logger()->sinks().push_back(sink);
@@ -234,6 +238,9 @@ int run(const RunOptions& o) {
     auto write_fields = [&](int step, double time) {
       const PointFields f = sim.gather_point_fields();
       if (output) output->write_fields(sim, f, step, time);
+      // output.units: taken by the run before the step's commit (none for step 0).
+      if (unit_output && !sim.unit_fields().empty() && sim.unit_fields().front().step == step)
+        unit_output->write(sim.unit_fields(), time);
     };
     write_fields(0, 0.0);
     const RunResult result = sim.run(
@@ -246,8 +253,7 @@ int run(const RunOptions& o) {
                        r.micro_residuals.back(), r.gmres_iterations, r.refreshes,
                        r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "",
                        format_duration(elapsed), format_duration(remaining));
-          if ((r.step + 1) % spec.output_every == 0 || r.step + 1 == spec.steps)
-            write_fields(r.step + 1, r.time);
+          if (sim.is_output_step(r.step)) write_fields(r.step + 1, r.time);
           if (output) output->write_progress(sim, r, wall_seconds() - t0);
         },
         [&](IterationTiming t) {

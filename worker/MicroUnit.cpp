@@ -52,7 +52,7 @@ double MicroUnit::mean_active_tension() const {
 }
 
 void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
-                            std::vector<double>* history) const {
+                            std::vector<double>* history, std::vector<Vec9>* element_P) const {
   const MicroModel& m = *model_;
   const int n = m.num_dofs();
   const bool need_G = !m.symmetric();
@@ -67,6 +67,7 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
 
   HexContribution c;
   Eigen::Matrix<double, 3, 8> w_e;
+  if (element_P) element_P->assign(m.num_elements(), Vec9::Zero());
   const double inv_volume = m.inv_volume();
   std::vector<double> scratch;  // only for callers that keep no history of their own
   if (!history && m.history_size() > 0) {
@@ -117,6 +118,7 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
     }
     sys.Abar += c.Abar;
     sys.Pbar += c.Pbar;
+    if (element_P) (*element_P)[e] = c.Pbar;
   }
   sys.G = need_G ? Eigen::MatrixXd(Gt.transpose()) : Eigen::MatrixXd(sys.H.transpose());
 }

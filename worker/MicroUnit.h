@@ -50,12 +50,16 @@ class MicroUnit final : public PointModel {
   /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern),
   /// with the point context of the last job. Laws with history write their current
   /// values into `history` (MicroModel::history_size() doubles), or into a scratch
-  /// array when it is null.
+  /// array when it is null. `element_P`, if given, receives each element's share of P̄
+  /// (⟨Π⟩ over that element, so the shares sum to P̄): the micro stress field for output.
   void assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
-                   std::vector<double>* history = nullptr) const;
+                   std::vector<double>* history = nullptr,
+                   std::vector<Vec9>* element_P = nullptr) const;
 
   const MicroModel& model() const { return *model_; }
   const Vec& w() const { return w_; }
+  /// Z̄ at the last assembled state.
+  const Vec9& Zbar() const { return Zbar_; }
   void set_w(const Vec& w) { w_ = w; }
   const Vec& pending_dw1() const { return dw1_; }
   const Eigen::MatrixXd& chi() const { return chi_; }

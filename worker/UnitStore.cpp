@@ -1,6 +1,7 @@
 #include "worker/UnitStore.h"
 
 #include "common/error.h"
+#include "worker/unit_fields.h"
 
 #include <algorithm>
 #include <csignal>
@@ -115,6 +116,14 @@ void UnitStore::commit() {
 
 void UnitStore::rollback() {
   for (auto& [_, u] : units_) u->rollback_step();
+}
+
+proto::UnitFields UnitStore::fields(int unit, int step) const {
+  auto it = units_.find(unit);
+  FE2_CHECK(it != units_.end(), "fields of unit {} which does not live here", unit);
+  const auto* micro = dynamic_cast<const MicroUnit*>(it->second.get());
+  FE2_CHECK(micro, "fields of unit {}: a {} point has no micro fields", unit, it->second->kind());
+  return micro_fields(*micro, unit, step);
 }
 
 Bytes UnitStore::take(int unit) {

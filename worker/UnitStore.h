@@ -3,6 +3,7 @@
 // Builds them fresh, runs their jobs, commits or rolls them back, and moves their
 // state out and in as bytes when the rebalancer migrates them.
 #include "proto/job.h"
+#include "proto/messages.h"
 #include "worker/point_models.h"
 
 #include <map>
@@ -25,6 +26,9 @@ class UnitStore {
   proto::JobOutput run(const proto::JobInput& job);
   void commit();
   void rollback();
+  /// A unit's micro fields for output (unit_fields.h: before the step's commit); an
+  /// fe2::Error if the unit is not here or is not an FE² unit.
+  proto::UnitFields fields(int unit, int step) const;
 
   /// Serializes a unit and removes it from this rank.
   Bytes take(int unit);

@@ -12,6 +12,16 @@ std::vector<int> coordinators_of(const UnitStore& store, const std::vector<int>&
   return {c.begin(), c.end()};
 }
 
+void send_unit_fields(proto::Transport& transport, const UnitStore& store,
+                      const std::vector<proto::Move>& requests, int step) {
+  for (const proto::Move& m : requests)
+    if (m.from == transport.rank()) {
+      Bytes b;
+      store.fields(m.unit, step).pack(b);
+      transport.send(m.to, proto::Type::unit_fields, std::move(b));
+    }
+}
+
 void run_worker_loop(proto::Transport& transport, UnitStore& store,
                      const std::vector<int>& coordinator_of_unit, int batch) {
   PullClient client(transport, store, batch);
@@ -35,6 +45,7 @@ void run_worker_loop(proto::Transport& transport, UnitStore& store,
         client.count_migrations(in, out);
         break;
       }
+      case proto::Command::fields: send_unit_fields(transport, store, c.moves, c.step); break;
       case proto::Command::shutdown: transport.complete_sends(); return;
     }
   }

@@ -341,7 +341,13 @@ Schema make_run_spec_schema() {
        {"output",
         object(false, "results",
                {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},
-                {"vtu", boolean(true, "write VTU/PVD for ParaView")}})}});
+                {"vtu", boolean(true, "write VTU/PVD for ParaView")},
+                {"units", custom("array of unit ids",
+                                 "FE² units (integration point ids) whose micro fields are "
+                                 "written at every output step, into units/",
+                                 {{"type", "array"},
+                                  {"items", {{"type", "integer"}, {"minimum", 0}}},
+                                  {"uniqueItems", true}})}})}});
 }
 
 /// tools/unit_spec.cpp

@@ -50,10 +50,12 @@ TEST(RunOutput, RunFilesAreRecognizedByName) {
   for (const char* own : {"summary.json", "spec.json", "fe2heart.log", "displacement.pvd",
                           "displacement_00000.vtu", "displacement_12345.vtu", "trace_units.jsonl",
                           "trace_iterations.jsonl", "summary.json.tmp", "gantt.png", "imbalance.png",
-                          "pv_curve.png", "pv_loop.png", "pv_time.png", "circulation.csv"})
+                          "pv_curve.png", "pv_loop.png", "pv_time.png", "circulation.csv",
+                          "units/unit_3.pvd", "units/unit_12_00004.vtu", "units/unit_12_00004.vtu.tmp"})
     EXPECT_TRUE(is_run_output_file(own)) << own;
   for (const char* other : {"notes.txt", "my_summary.json", "displacement_x.vtu", "mesh.vtu",
-                            "spec.json.bak", "fe2heart.log.1", "heart.msh", "plot.png"})
+                            "spec.json.bak", "fe2heart.log.1", "heart.msh", "plot.png",
+                            "unit_3.pvd", "units/unit_x.vtu", "units/notes.txt", "other/unit_3.pvd"})
     EXPECT_FALSE(is_run_output_file(other)) << other;
 }
 
@@ -77,6 +79,17 @@ TEST(RunOutput, EarlierRunIsRefusedWithoutOverwriteAndNothingIsRemoved) {
       << msg;
   EXPECT_EQ(refusal(dir.str(), true), "");
   EXPECT_TRUE(dir.has("displacement_00099.vtu"));  // the check itself removes nothing
+}
+
+// output.units writes into units/: an earlier run's unit files count as run files there.
+TEST(RunOutput, EarlierUnitFilesAreFoundInTheUnitsFolder) {
+  const Scratch dir;
+  fs::create_directories(dir.str() + "/units");
+  dir.touch("units/notes.txt");
+  EXPECT_EQ(refusal(dir.str(), false), "");
+  dir.touch("units/unit_7_00003.vtu");
+  EXPECT_EQ(run_output_files(dir.str()), std::vector<std::string>{"units/unit_7_00003.vtu"});
+  EXPECT_NE(refusal(dir.str(), false).find("(1 file: units/unit_7_00003.vtu)"), std::string::npos);
 }
 
 TEST(RunOutput, AFileInsteadOfAFolderIsRefused) {

@@ -180,6 +180,63 @@ TEST(Messages, CostReportRoundTripAndCorruption) {
   EXPECT_THROW(CostReport::unpack(other), Error);
 }
 
+// A unit's micro fields (output.units): every number arrives, and sizes that do not
+// fit one mesh or a non-finite value are refused on receipt.
+TEST(Messages, UnitFieldsRoundTripAndCorruption) {
+  UnitFields f;
+  f.unit = 7;
+  f.step = 12;
+  for (int i = 0; i < 9; ++i) f.Zbar[i] = 0.01 * i, f.P_bar[i] = 100.0 - i;
+  f.active = true;
+  for (int i = 0; i < 3 * 5; ++i) f.w.push_back(1e-3 * i);
+  for (int i = 0; i < 9 * 2; ++i) f.P.push_back(i - 4.5);
+  f.det_F = {0.99, 1.01};
+  f.active_tension = {0.0, 5.5e4};
+  Bytes bytes;
+  f.pack(bytes);
+  EXPECT_EQ(bytes.size(), 4 + 2 * 4 + 18 * 8 + 1 + 4 * 8 + (15 + 18 + 2 + 2) * 8);
+  const UnitFields back = UnitFields::unpack(bytes);
+  EXPECT_EQ(back.unit, 7);
+  EXPECT_EQ(back.step, 12);
+  EXPECT_EQ(back.Zbar, f.Zbar);
+  EXPECT_EQ(back.P_bar, f.P_bar);
+  EXPECT_TRUE(back.active);
+  EXPECT_EQ(back.w, f.w);
+  EXPECT_EQ(back.P, f.P);
+  EXPECT_EQ(back.det_F, f.det_F);
+  EXPECT_EQ(back.active_tension, f.active_tension);
+  EXPECT_EQ(back.nodes(), 5);
+  EXPECT_EQ(back.cells(), 2);
+  expect_rejects_corruption<UnitFields>(bytes);
+  auto with = [&](auto change) {
+    UnitFields bad = f;
+    change(bad);
+    Bytes b;
+    bad.pack(b);
+    return b;
+  };
+  EXPECT_THROW(UnitFields::unpack(with([](UnitFields& x) { x.w.pop_back(); })), Error);
+  EXPECT_THROW(UnitFields::unpack(with([](UnitFields& x) { x.P.pop_back(); })), Error);
+  EXPECT_THROW(UnitFields::unpack(with([](UnitFields& x) { x.active_tension.push_back(0); })), Error);
+  EXPECT_THROW(UnitFields::unpack(with([](UnitFields& x) { x.det_F[1] = NAN; })), Error);
+  EXPECT_THROW(UnitFields::unpack(with([](UnitFields& x) { x.unit = -2; })), Error);
+
+  // The request: a Control 'fields' naming (unit, holder, rank 0).
+  Control c;
+  c.command = Command::fields;
+  c.step = 12;
+  c.moves = {{7, 2, 0}};
+  Bytes cb;
+  c.pack(cb);
+  const Control c2 = Control::unpack(cb);
+  EXPECT_EQ(c2.command, Command::fields);
+  ASSERT_EQ(c2.moves.size(), 1u);
+  EXPECT_EQ(c2.moves[0].from, 2);
+  Bytes other;
+  c.pack(other);
+  EXPECT_THROW(UnitFields::unpack(other), Error);  // a Control is not a Fields message
+}
+
 TEST(Messages, ResultCarriesTheNextRefreshBitsAndStateSize) {
   Pull p;
   p.worker = 0;
