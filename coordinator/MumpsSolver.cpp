@@ -75,10 +75,16 @@ void MumpsSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
 }
 
 void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs) {
+  factorize(values);
+  solve(rhs);
+}
+
+void MumpsSolver::factorize(const std::vector<double>& values) {
   FE2_CHECK(analysed_, "set_pattern first");
   FE2_CHECK(values.size() == a_.size(), "{} values for {} triplets", values.size(), a_.size());
   a_ = values;
   id_.a_loc = a_.data();
+  factored_ = false;
   run(2, "factorization");
   if (id_.INFOG(28) > 0)
     throw SingularMatrixError(fmt::format(
@@ -87,6 +93,11 @@ void MumpsSolver::factorize_and_solve(const std::vector<double>& values, std::ve
         "translations and 3 rotations must be fixed, e.g. a face fixed in all components "
         "[0,1,2], not only some); otherwise a material that lost all stiffness",
         id_.INFOG(28), n_));
+  factored_ = true;
+}
+
+void MumpsSolver::solve(std::vector<double>& rhs) {
+  FE2_CHECK(factored_, "factorize first");
   id_.rhs = rhs.data();
   id_.nrhs = 1;
   id_.lrhs = n_;

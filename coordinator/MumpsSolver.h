@@ -38,6 +38,11 @@ class MumpsSolver {
   /// Values in the order of the pattern's triplets; `rhs` (length n, significant on rank
   /// 0 of comm) is overwritten with the solution on rank 0. @note Collective.
   void factorize_and_solve(const std::vector<double>& values, std::vector<double>& rhs);
+  /// The numeric factorization alone (throws SingularMatrixError on null pivots).
+  /// @note Collective.
+  void factorize(const std::vector<double>& values);
+  /// A solve with the last factorization; `rhs` as in factorize_and_solve. @note Collective.
+  void solve(std::vector<double>& rhs);
 
   int size() const { return n_; }
   /// The fill-reducing ordering the analysis used (INFOG(7)), e.g. "METIS".
@@ -50,6 +55,7 @@ class MumpsSolver {
   std::vector<int> irn_, jcn_;
   std::vector<double> a_;
   bool analysed_ = false;
+  bool factored_ = false;
   std::string ordering_;
 };
 

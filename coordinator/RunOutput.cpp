@@ -297,6 +297,13 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["formulation"] = sim.spec().formulation.mixed ? "mixed" : "displacement";
   s["macro_unknowns"] = sim.system().num_free();
   s["macro_ordering"] = sim.macro_ordering();
+  const MacroSolver::Stats& ms = sim.macro_solver_stats();
+  s["macro_solver"] = {{"refresh", sim.spec().macro_solver.refresh == MacroSolverOptions::Refresh::adaptive
+                                       ? "adaptive"
+                                       : "every_iteration"},
+                       {"factorizations", ms.factorizations},
+                       {"kept_factor_solves", ms.reused},
+                       {"gmres_iterations", ms.gmres_iterations}};
   if (pvd_) s["fields"] = fs::path(pvd_path()).filename().string();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }

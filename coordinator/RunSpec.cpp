@@ -436,6 +436,20 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
                              "unit residual ‖r‖ / r_ref");
   spec.max_cutbacks = n.integer("max_cutbacks", 4, Range::closed(0, 30),
                                 "step halvings before giving up");
+  {
+    SpecNode m = n.child("macro_solver", false, "when the macro factor is refreshed");
+    MacroSolverOptions& o = spec.macro_solver;
+    o.refresh = m.choice("refresh", "every_iteration", {"every_iteration", "adaptive"},
+                         "every_iteration: factor S̄ at every Newton iteration; adaptive: keep the "
+                         "factor as GMRES preconditioner across iterations and steps") == "adaptive"
+                    ? MacroSolverOptions::Refresh::adaptive
+                    : MacroSolverOptions::Refresh::every_iteration;
+    o.gmres_rtol = m.number("gmres_rtol", 1e-12, Range{0.0, 1e-3, true, true},
+                            "‖b − S̄x‖ / ‖b‖ GMRES reaches with a kept factor");
+    o.max_gmres_iterations = m.integer("max_gmres_iterations", 10, Range::closed(1, 500),
+                                       "a solve that needs more refactors for the next one");
+    m.finish();
+  }
   n.finish();
 
   SpecNode cavities = root.child("cavities", false, "cavities whose deformed volume is reported every step");

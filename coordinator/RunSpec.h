@@ -13,6 +13,7 @@
 #include "common/mesh/TetMesh.h"
 #include "common/spec/SpecNode.h"
 #include "coordinator/FarmOptions.h"
+#include "coordinator/MacroSolverOptions.h"
 #include "worker/MicroModel.h"
 #include "worker/point_models.h"
 
@@ -104,6 +105,7 @@ struct RunSpec {
   double newton_rtol = 1e-8;      ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
   double micro_rtol = 1e-8;       ///< each unit: ‖r‖ <= micro_rtol · r_ref
   int max_cutbacks = 4;
+  MacroSolverOptions macro_solver;  ///< newton.macro_solver: when the macro factor is refreshed
 
   FarmOptions farm;
   uint64_t hash = 0;              ///< of the spec's canonical text (ranks compare it)

@@ -43,7 +43,7 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
       points_(spec.mesh, spec.formulation.quadrature_degree),
       owned_points_(points_.points_of(owned_elements_)),
       system_(spec, spec.formulation.mixed),
-      mumps_(group_.raw(), system_.num_free()) {
+      macro_solver_(group_, system_.num_free(), spec.macro_solver) {
   FE2_CHECK(points_.points_per_element() == spec.points_per_element,
             "{} points per element, the spec counted {}", points_.points_per_element(),
             spec.points_per_element);
@@ -299,7 +299,7 @@ void Simulation::solve(int iteration) {
   du_ = assembly_->rhs();
   group_.reduce_sum(du_.data(), system_.num_free(), 0);
   try {
-    mumps_.factorize_and_solve(values_, du_);
+    macro_solver_.solve(values_, du_);
   } catch (const SingularMatrixError& e) {
     // The enriched pressure is inf–sup stable only where elements have free vertices
     // (Boffi et al. 2012): say so, it is the likelier cause then.
@@ -333,7 +333,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
   if (!pattern_set_) {
     for (auto& term : terms_) term->declare(system_);
     values_.assign(system_.rows().size(), 0.0);
-    mumps_.set_pattern(system_.rows(), system_.cols());
+    macro_solver_.set_pattern(system_.rows(), system_.cols());
     assembly_ = std::make_unique<MacroAssembly>(system_, values_);
     if (incompressibility_) {
       pressure_volumes_ = incompressibility_->pressure_volumes();

@@ -15,7 +15,7 @@
 #include "coordinator/MacroPoints.h"
 #include "coordinator/MacroSystem.h"
 #include "coordinator/MacroTerm.h"
-#include "coordinator/MumpsSolver.h"
+#include "coordinator/MacroSolver.h"
 #include "coordinator/PointEvaluator.h"
 #include "common/circulation/Circulation.h"
 #include "coordinator/RunSpec.h"
@@ -93,7 +93,9 @@ class Simulation {
   const RunSpec& spec() const { return spec_; }
   const MacroSystem& system() const { return system_; }
   /// The fill-reducing ordering MUMPS chose for S̄ ("" before the first solve).
-  const std::string& macro_ordering() const { return mumps_.ordering(); }
+  const std::string& macro_ordering() const { return macro_solver_.ordering(); }
+  /// Factorizations and kept-factor solves of the macro system so far.
+  const MacroSolver::Stats& macro_solver_stats() const { return macro_solver_.stats(); }
   const MacroPoints& points() const { return points_; }
   /// Every DOF: ū (node-major) then p.
   const Eigen::VectorXd& state() const { return x_; }
@@ -160,7 +162,7 @@ class Simulation {
   std::vector<std::unique_ptr<MacroTerm>> terms_;
   IncompressibilityTerm* incompressibility_ = nullptr;
   Eigen::VectorXd pressure_volumes_;   ///< ∫N_p over all elements (mixed)
-  MumpsSolver mumps_;
+  MacroSolver macro_solver_;
   bool pattern_set_ = false;
   std::vector<Mat3> Q_;                ///< frame per point
   std::vector<Mat9> R_;

@@ -20,7 +20,7 @@
 #include "worker/MicroModel.h"
 #include "worker/PointModel.h"
 #include "worker/RefreshPolicy.h"
-#include "worker/gmres.h"
+#include "common/linalg/gmres.h"
 
 namespace fe2 {
 

@@ -1,6 +1,6 @@
 // Micro-unit machinery: periodic DOFs, factor backends, GMRES, state migration.
 #include "tests/worker/unit_fixtures.h"
-#include "worker/gmres.h"
+#include "common/linalg/gmres.h"
 #include "worker/unit_equilibrium.h"
 
 #include <gtest/gtest.h>

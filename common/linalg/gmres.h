@@ -4,7 +4,8 @@
 // solves A x = b with x = M⁻¹ y, so the residual it minimises is the true residual
 // b − A x, and the stopping test ‖b − A x‖ ≤ tol is checked on the true residual at
 // every restart. Used for Step 1 (Eq. 8) and stale characteristic modes (Eq. 6) with
-// the unit's cached factor as M⁻¹ (paper Fig. 6, c2 and c3).
+// the unit's cached factor as M⁻¹ (paper Fig. 6, c2 and c3), and for the macro system
+// with a kept MUMPS factor (MacroSolver).
 #include <Eigen/Dense>
 
 #include <functional>

@@ -1,4 +1,4 @@
-#include "worker/gmres.h"
+#include "common/linalg/gmres.h"
 
 #include <cmath>
 #include <vector>
