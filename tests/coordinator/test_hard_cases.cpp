@@ -44,6 +44,7 @@ TEST(HardCases, FactorKeptFiftyStepsStaleReachesTheFreshAnswer) {
 // converge, to the answer of refreshing at every iteration. (Measured and left for issue
 // #11: the `fixed` policy with N_t = 4 stalls here, its units' residuals stuck at 2e-9 to
 // 9e-9 of r_ref, and the run fails after four cut-backs.)
+TEST(HardCases, MicroContrastOfAThousandConverges) {
   auto unit = [](const std::string& refresh) {
     json u = test::two_cell_unit(refresh, true, 4);
     u["materials"]["cell"] = test::nh(2.0e6, 0.4);
