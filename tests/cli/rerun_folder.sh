@@ -17,7 +17,7 @@ mkdir -p "$dir"  # an existing empty folder is fine
 "$fe2heart" run "$spec" --out "$dir" --log-level warn || fail "first run into an empty folder failed"
 echo stale > "$dir/displacement_00099.vtu"
 echo "my notes" > "$dir/notes.txt"
-cp "$dir/summary.json" "$dir/../summary.before"
+cp "$dir/summary.json" "$dir.summary.before"  # per test: refuse and overwrite run in parallel
 case $mode in
   refuse)
     output=$("$fe2heart" run "$spec" --out "$dir" 2>&1); rc=$?
@@ -27,7 +27,7 @@ case $mode in
       fail "the message does not name the folder"
     printf '%s\n' "$output" | grep -Eq -- "run [(]1[0-9] files: .*[)]. use --overwrite to replace it, or another --out" ||
       fail "the message does not count the files and name the remedy"
-    cmp -s "$dir/summary.json" "$dir/../summary.before" || fail "summary.json was rewritten"
+    cmp -s "$dir/summary.json" "$dir.summary.before" || fail "summary.json was rewritten"
     [[ -f "$dir/displacement_00099.vtu" ]] || fail "the refused run removed displacement_00099.vtu"
     [[ $(cat "$dir/notes.txt") == "my notes" ]] || fail "notes.txt changed"
     ;;
