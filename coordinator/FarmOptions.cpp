@@ -1,6 +1,19 @@
 #include "coordinator/FarmOptions.h"
 
+#include "common/spec/memory_size.h"
+#include "worker/micro_memory.h"
+
+#include <cmath>
+
 namespace fe2 {
+
+namespace {
+const char* const kBudgetType = "bytes: a number > 0 or a size such as \"2G\", \"500M\"";
+const char* const kBudgetHelp =
+    "sparse factors a worker rank may hold; past it the least recently used factors of other "
+    "units are dropped and rebuilt on their next job (counted in summary.factor_memory); "
+    "default: unlimited";
+}  // namespace
 
 const std::vector<std::string>& FarmOptions::policy_names() {
   static const std::vector<std::string> names = {"round_robin", "contiguous", "cost_based"};
@@ -46,8 +59,40 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
       "stops the job naming the silent rank; must exceed the longest wait of a "
       "healthy run: one Newton iteration (micro phase and macro solve) plus an "
       "output write");
+  if (const json* b = farm.declared_value("factor_memory_budget", kBudgetType, kBudgetHelp)) {
+    const std::string key = farm.key_path("factor_memory_budget");
+    if (b->is_string()) {
+      fo.factor_memory_budget_text = b->get<std::string>();
+      fo.factor_memory_budget = parse_memory_size(fo.factor_memory_budget_text, key);
+    } else if (b->is_number() && b->get<double>() > 0 && std::isfinite(b->get<double>())) {
+      fo.factor_memory_budget = b->get<double>();
+      fo.factor_memory_budget_text = b->dump();
+    } else {
+      farm.fail("factor_memory_budget", std::string(kBudgetType) + " (" + kBudgetHelp + ")");
+    }
+  }
   farm.finish();
   return fo;
+}
+
+void FarmOptions::check_factor_budget(const std::vector<PointModelSpec>& models,
+                                      const std::vector<int>& model_of_point) const {
+  if (factor_memory_budget <= 0) return;
+  std::vector<bool> used(models.size(), false);
+  for (int m : model_of_point) used.at(static_cast<size_t>(m)) = true;
+  double need = 0;
+  const PointModelSpec* largest = nullptr;
+  for (size_t m = 0; m < models.size(); ++m)
+    if (used[m] && models[m].plan && models[m].plan->memory.factor_bytes > need) {
+      need = models[m].plan->memory.factor_bytes;
+      largest = &models[m];
+    }
+  if (largest && factor_memory_budget < need)
+    throw InputError(fmt::format(
+        "/farm/factor_memory_budget: got {} ({}), below one factor of model '{}' (≈ {}, "
+        "estimated: {}); expected at least {:.0f} (bytes), or no budget",
+        factor_memory_budget_text, format_bytes(factor_memory_budget), largest->name,
+        format_bytes(need), largest->plan->memory.describe(), std::ceil(need)));
 }
 
 }  // namespace fe2

@@ -1,6 +1,7 @@
 #pragma once
 // How a run is spread over MPI ranks (spec section "farm"; DESIGN §3).
 #include "common/spec/SpecNode.h"
+#include "worker/point_models.h"
 
 #include <string>
 #include <vector>
@@ -22,10 +23,20 @@ struct FarmOptions {
   /// waited for. A healthy wait can span one whole Newton iteration (a worker idle until
   /// the next command: the other workers' jobs, the macro solve) and an output write.
   double stall_timeout = 600.0;
+  /// Bytes of sparse factors a worker rank may hold (0: unlimited). Past it the rank drops
+  /// the least recently used factors of other units; a unit rebuilds its factor on its
+  /// next job (worker/UnitStore.h). As written in the spec, for messages ("2G").
+  double factor_memory_budget = 0.0;
+  std::string factor_memory_budget_text;
 
   /// Reads the spec section "farm" (every key optional): the run and `farm-sim`
   /// (which replays a run from its spec.json) share these declarations.
   static FarmOptions from_spec(SpecNode farm);
+  /// A budget below one unit's factor (the largest of the FE² models that `model_of_point`
+  /// uses, by the memory estimate) is an InputError naming the key, the value and the
+  /// smallest useful budget.
+  void check_factor_budget(const std::vector<PointModelSpec>& models,
+                           const std::vector<int>& model_of_point) const;
 
   /// The placement policies by their spec names ("round_robin", "contiguous",
   /// "cost_based"), one table for the spec, the command line and the reports.

@@ -172,6 +172,8 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   json hist = json::array();
   int gmres = 0, refreshes = 0;
   double micro_cpu = 0.0;
+  int evictions = 0, rebuilds = 0;
+  double rebuild_cpu = 0.0;
   for (const auto& h : r.history) {
     hist.push_back({{"step", h.step},
                     {"time", h.time},
@@ -220,6 +222,9 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
     gmres += h.gmres_iterations;
     refreshes += h.refreshes;
     micro_cpu += h.micro_cpu_seconds;
+    evictions += h.factor_evictions;
+    rebuilds += h.factor_rebuilds;
+    rebuild_cpu += h.factor_rebuild_cpu_seconds;
   }
   s["history"] = hist;
   // Per cavity: its surface, the pressure loads on it (the pressure–volume curve of
@@ -290,6 +295,13 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["gmres_iterations"] = gmres;
   s["refreshes"] = refreshes;
   s["micro_cpu_seconds"] = micro_cpu;
+  // farm.factor_memory_budget: how often ranks dropped a unit's factor to stay within it,
+  // and how often (and at what CPU cost) a dropped factor was rebuilt on a later job.
+  const FarmOptions& farm = sim.spec().farm;
+  s["factor_memory"] = {{"budget_bytes", farm.factor_memory_budget > 0 ? json(farm.factor_memory_budget) : json()},
+                        {"evictions", evictions},
+                        {"rebuilds", rebuilds},
+                        {"rebuild_cpu_seconds", rebuild_cpu}};
   s["wall_seconds"] = wall;
   s["points"] = sim.points().size();
   s["elements"] = sim.spec().mesh.num_tets();

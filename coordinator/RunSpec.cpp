@@ -518,6 +518,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   probes.finish();
 
   spec.farm = FarmOptions::from_spec(root.child("farm", false, "MPI task farm (ranks, scheduling)"));
+  spec.farm.check_factor_budget(spec.models, spec.model_of_points());
 
   SpecNode out = root.child("output", false, "results");
   spec.output_every = out.integer("every", 1, Range::closed(1, 1e7), "write every k-th step");

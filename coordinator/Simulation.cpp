@@ -368,16 +368,24 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
       rec.residuals.push_back(res.displacement);
       if (system_.has_pressure()) rec.volume_residuals.push_back(res.volume);
       rec.micro_residuals.push_back(res.micro);
-      double work[3] = {0.0, 0.0, 0.0};  // GMRES iterations, refreshes, unit CPU seconds
+      // GMRES iterations, refreshes, unit CPU seconds; farm.factor_memory_budget: factors
+      // dropped, rebuilt, and the CPU seconds of those rebuilds.
+      double work[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
       for (const auto& r : results_) {
         work[0] += r.gmres_iterations;
         work[1] += r.kind == proto::Refresh::refresh;
         work[2] += r.cpu_seconds;
+        work[3] += r.factor_evictions;
+        work[4] += r.factor_rebuilt;
+        if (r.factor_rebuilt) work[5] += r.cpu_refresh;
       }
-      group_.allreduce_sum(work, 3);
+      group_.allreduce_sum(work, 6);
       rec.gmres_iterations += static_cast<int>(work[0]);
       rec.refreshes += static_cast<int>(work[1]);
       rec.micro_cpu_seconds += work[2];
+      rec.factor_evictions += static_cast<int>(work[3]);
+      rec.factor_rebuilds += static_cast<int>(work[4]);
+      rec.factor_rebuild_cpu_seconds += work[5];
       spdlog::debug("step {} t={:.6g} it {}: |R_u|/F = {:.3e}{}, max |r|/r_ref = {:.3e}", step, t_new,
                     it, res.displacement,
                     system_.has_pressure() ? fmt::format(", |R_p|/V = {:.3e}", res.volume) : "",

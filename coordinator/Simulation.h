@@ -48,6 +48,9 @@ struct StepRecord {
   std::vector<double> micro_residuals;///< max_k ‖r_k‖ / r_ref,k per iteration (last substep)
   int gmres_iterations = 0;
   int refreshes = 0;
+  int factor_evictions = 0;           ///< farm.factor_memory_budget: factors dropped ...
+  int factor_rebuilds = 0;            ///< ... and rebuilt on a later job
+  double factor_rebuild_cpu_seconds = 0.0;  ///< CPU of those rebuilds (in micro_cpu_seconds)
   double wall_seconds = 0.0;
   double micro_cpu_seconds = 0.0;
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step

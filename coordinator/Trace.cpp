@@ -56,7 +56,9 @@ void Trace::unit(int step, int iteration, int worker, const proto::JobCost& c) {
                             {"refresh_cost", c.cpu_refresh},
                             {"kind", c.kind == proto::Refresh::refresh ? "refresh" : "reuse"},
                             {"gmres", c.gmres_iterations},
-                            {"state_bytes", c.state_bytes}};
+                            {"state_bytes", c.state_bytes},
+                            {"factor_evictions", c.factor_evictions},
+                            {"factor_rebuilt", c.factor_rebuilt != 0}};
   units_ << j.dump() << '\n';  // flushed with the iteration line
 }
 

@@ -6,7 +6,8 @@
 //   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
 //                           wall), idle, wait, t_begin/t_end, migrations, bytes
 //   trace_units.jsonl       per (step, iteration, unit): worker, cost, refresh_cost,
-//                           kind, GMRES, state_bytes
+//                           kind, GMRES, state_bytes, factor_evictions (other units'
+//                           factors its worker dropped for it), factor_rebuilt
 // Written by rank 0 only; every line is flushed, so a stopped run keeps its trace.
 #include "proto/job.h"
 #include "proto/messages.h"

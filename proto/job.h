@@ -65,6 +65,11 @@ struct JobOutput {
   uint8_t next_refresh = 0;   ///< NextJob bits: which possible next jobs would refresh
   uint64_t state_bytes = 0;   ///< the point's serialized state now (what a move sends)
   double active_tension = 0.0;///< T_a of the point's contracting cells (mean over a unit's cells), Pa
+  /// farm.factor_memory_budget (worker/UnitStore.h): factors of other units the rank
+  /// dropped to make room for this job's, and whether this job rebuilt its own factor
+  /// because the budget had dropped it (that rebuild's CPU time is in cpu_refresh).
+  int32_t factor_evictions = 0;
+  uint8_t factor_rebuilt = 0;
   uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)
   std::string message;        ///< why, when failed
 };

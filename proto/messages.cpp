@@ -101,6 +101,8 @@ void pack_result(ByteWriter& w, const JobOutput& o) {
   w.put(o.next_refresh);
   w.put(o.state_bytes);
   w.put(o.active_tension);
+  w.put(o.factor_evictions);
+  w.put(o.factor_rebuilt);
   w.put(o.failed);
   w.put_string(o.message);
 }
@@ -124,11 +126,16 @@ JobOutput unpack_result(ByteReader& r) {
   o.next_refresh = r.get<uint8_t>();
   o.state_bytes = r.get<uint64_t>();
   o.active_tension = r.get<double>();
+  o.factor_evictions = r.get<int32_t>();
+  o.factor_rebuilt = r.get<uint8_t>();
   o.failed = r.get<uint8_t>();
   o.message = r.get_string();
   if (o.unit < 0) throw Error(fmt::format("{}: result for unit {}", r.what(), o.unit));
   if (o.next_refresh > all_next_jobs)
     throw Error(fmt::format("{}: next-refresh bits {} out of range", r.what(), o.next_refresh));
+  if (o.factor_evictions < 0 || o.factor_rebuilt > 1)
+    throw Error(fmt::format("{}: factor evictions {}, rebuilt flag {} out of range", r.what(),
+                            o.factor_evictions, o.factor_rebuilt));
   return o;
 }
 
@@ -315,6 +322,8 @@ JobCost JobCost::of(const JobOutput& o) {
   c.cpu_refresh = o.cpu_refresh;
   c.next_refresh = o.next_refresh;
   c.state_bytes = o.state_bytes;
+  c.factor_evictions = o.factor_evictions;
+  c.factor_rebuilt = o.factor_rebuilt;
   c.failed = o.failed;
   return c;
 }
@@ -333,6 +342,8 @@ void CostReport::pack(Bytes& out) const {
     w.put(c.cpu_refresh);
     w.put(c.next_refresh);
     w.put(c.state_bytes);
+    w.put(c.factor_evictions);
+    w.put(c.factor_rebuilt);
     w.put(c.failed);
   }
 }
@@ -354,11 +365,14 @@ CostReport CostReport::unpack(const Bytes& in) {
     c.cpu_refresh = r.get<double>();
     c.next_refresh = r.get<uint8_t>();
     c.state_bytes = r.get<uint64_t>();
+    c.factor_evictions = r.get<int32_t>();
+    c.factor_rebuilt = r.get<uint8_t>();
     c.failed = r.get<uint8_t>();
     // Validate on receipt: these numbers steer the rebalancer and land in the trace.
     if (c.unit < 0 || kind > 1 || c.gmres_iterations < 0 || !(c.cpu_seconds >= 0.0) ||
         !(c.cpu_refresh >= 0.0) || !std::isfinite(c.cpu_seconds) || !std::isfinite(c.cpu_refresh) ||
-        c.next_refresh > all_next_jobs || c.failed > 1)
+        c.next_refresh > all_next_jobs || c.failed > 1 || c.factor_evictions < 0 ||
+        c.factor_rebuilt > 1)
       throw Error(fmt::format(
           "Costs message: invalid job cost (unit {}, kind {}, GMRES {}, cpu {} s, refresh {} s, "
           "next-refresh bits {}, failed {})",

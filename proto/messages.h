@@ -18,10 +18,11 @@
 //               9 f64 Z̄ | 9 f64 Ż̄ | f64 ∂Ż̄/∂Z̄ | f64 t_act             (kJobInputBytes)
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
-//               u8 next_refresh | u64 state_bytes | f64 T_a | u8 status | message string
-//                                                                   (kJobOutputBytes + text)
+//               u8 next_refresh | u64 state_bytes | f64 T_a | i32 factor_evictions |
+//               u8 factor_rebuilt | u8 status | message string       (kJobOutputBytes + text)
 //   JobCost   = i32 unit | u8 kind | i32 gmres | f64 cpu, cpu_refresh | u8 next_refresh |
-//               u64 state_bytes | u8 failed                         (kJobCostBytes)
+//               u64 state_bytes | i32 factor_evictions | u8 factor_rebuilt | u8 failed
+//                                                                   (kJobCostBytes)
 // Little-endian, native doubles: all ranks of one job run on one architecture.
 #include "common/bytes.h"
 #include "proto/job.h"
@@ -42,8 +43,8 @@ const char* name_of(Type t);
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
 constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
-constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 1;
-constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 1;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 1;
+constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 4 + 1 + 1;
 
 /// Reads and checks the header; throws fe2::Error naming both versions on mismatch.
 void check_header(ByteReader& r, Type expected);
@@ -146,6 +147,8 @@ struct JobCost {
   double cpu_refresh = 0.0;     ///< its factorization and χ, if any
   uint8_t next_refresh = 0;     ///< NextJob bits
   uint64_t state_bytes = 0;
+  int32_t factor_evictions = 0; ///< JobOutput::factor_evictions
+  uint8_t factor_rebuilt = 0;   ///< JobOutput::factor_rebuilt
   uint8_t failed = 0;
   static JobCost of(const JobOutput& o);
 };

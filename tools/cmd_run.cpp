@@ -199,6 +199,7 @@ int run(const RunOptions& o) {
   try {
     if (layout.is_worker(rank)) {
       store = std::make_unique<UnitStore>(spec.models, model_of_unit);
+      store->set_factor_budget(spec.farm.factor_memory_budget);
       for (size_t u = 0; u < model_of_unit.size(); ++u)
         if (layout.initial_worker_of_unit[u] == rank) store->create(static_cast<int>(u));
     }

@@ -1,6 +1,7 @@
 #pragma once
 // The memory a rank may use (`--memory-limit`) and the check that refuses unit models
 // that would not fit, before any of them is built (issue 7 item 11).
+#include "common/spec/memory_size.h"
 #include "coordinator/RunSpec.h"
 #include "worker/MicroModel.h"
 
@@ -9,9 +10,7 @@
 
 namespace fe2::cli {
 
-/// Bytes of "8G", "500M", "64k", "1.5G" (powers of 1024) or "123456" (bytes). Throws
-/// InputError naming `option` and the text when it is not such a size.
-double parse_memory_size(const std::string& text, const std::string& option);
+using fe2::parse_memory_size;  // common/spec/memory_size.h
 
 struct MemoryLimit {
   double bytes = 0;

@@ -251,9 +251,10 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   if (refreshed) {
     ScopedCpuTimer t(out.cpu_refresh);
     refresh();
-  } else if (!factor_) {  // arrived from another rank: rebuild the cached factor
+  } else if (!factor_) {  // arrived from another rank, rolled back or dropped: rebuild it
     ScopedCpuTimer t(out.cpu_refresh);
     rebuild_factor();
+    out.factor_rebuilt = 1;
   }
   GmresResult res;
   {

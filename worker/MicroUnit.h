@@ -46,6 +46,13 @@ class MicroUnit final : public PointModel {
   std::string kind() const override { return "micro_unit"; }
   bool next_refresh(int step, int iteration) const override;
   size_t state_bytes() const override;
+  /// SparseFactor::factor_bytes: CHOLMOD's numeric factor (L->xsize doubles) or
+  /// UMFPACK's Numeric object, as the libraries count them; the symbolic analysis and
+  /// solve workspace (a few per cent) are not counted.
+  double factor_bytes() const override { return factor_ ? factor_->factor_bytes() : 0.0; }
+  /// Frees the factor; the next job that reuses it rebuilds it from the matrix it was
+  /// made of (K at the last refresh), bit for bit, as after a migration.
+  void drop_factor() override { factor_.reset(); }
 
   /// Assembles r, K, G, H, Ā, P̄ at (w, Z̄) into `sys` (its K must hold the pattern),
   /// with the point context of the last job. Laws with history write their current

@@ -31,6 +31,12 @@ class PointModel {
   virtual bool next_refresh(int step, int iteration) const = 0;
   /// Bytes serialize() writes now: what a migration of this point sends.
   virtual size_t state_bytes() const = 0;
+
+  /// Bytes of the cached factor this point holds now (0: none). The factor is a cache:
+  /// drop_factor() frees it and the point rebuilds it, unchanged, on its next job
+  /// (the factor memory budget, worker/UnitStore.h).
+  virtual double factor_bytes() const { return 0.0; }
+  virtual void drop_factor() {}
 };
 
 using PointModelPtr = std::unique_ptr<PointModel>;

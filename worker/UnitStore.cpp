@@ -75,6 +75,54 @@ std::vector<int> UnitStore::units() const {
 void UnitStore::create(int unit) {
   FE2_CHECK(!holds(unit), "unit {} already here", unit);
   units_[unit] = make_point_model(models_.at(model_of_unit_.at(unit)));
+  factor_[unit] = FactorRecord{};
+}
+
+double UnitStore::held_factor_bytes() const {
+  double held = 0;
+  for (const auto& [_, u] : units_) held += u->factor_bytes();
+  return held;
+}
+
+UnitStore::FactorCounts UnitStore::factor_counts(int unit) const {
+  auto it = factor_.find(unit);
+  FE2_CHECK(it != factor_.end(), "factor counts of unit {} which does not live here", unit);
+  return it->second.counts;
+}
+
+double UnitStore::expected_factor_bytes(int unit) const {
+  const FactorRecord& own = factor_.at(unit);
+  if (own.bytes > 0) return own.bytes;
+  double same_model = 0;
+  const int model = model_of_unit_.at(unit);
+  for (const auto& [id, rec] : factor_)
+    if (model_of_unit_.at(id) == model) same_model = std::max(same_model, rec.bytes);
+  return same_model;
+}
+
+int UnitStore::make_room(int in_use, double need) {
+  double held = 0;
+  for (const auto& [id, u] : units_)
+    if (id != in_use) held += u->factor_bytes();
+  int dropped = 0;
+  while (held + need > budget_) {
+    // The least recently used other unit that holds a factor (ties: the lowest id).
+    int victim = -1;
+    long long oldest = 0;
+    for (const auto& [id, u] : units_)
+      if (id != in_use && u->factor_bytes() > 0 && (victim < 0 || factor_[id].last_use < oldest))
+        victim = id, oldest = factor_[id].last_use;
+    if (victim < 0) break;  // the unit in use alone is over budget: it keeps its factor
+    PointModel& v = *units_[victim];
+    held -= v.factor_bytes();
+    v.drop_factor();
+    FactorRecord& rec = factor_[victim];
+    rec.dropped = true;
+    ++rec.counts.evictions;
+    ++totals_.evictions;
+    ++dropped;
+  }
+  return dropped;
 }
 
 proto::JobOutput UnitStore::run(const proto::JobInput& job) {
@@ -90,6 +138,24 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
     out.message = fmt::format("unit {}: injected numerical fault (FE2HEART_FAULT)", job.unit);
     return out;
   }
+  PointModel& point = *it->second;
+  FactorRecord& rec = factor_.at(job.unit);
+  rec.last_use = ++clock_;
+  int evicted = 0;
+  if (budget_ > 0 && point.factor_bytes() == 0)  // this job will build a factor
+    evicted += make_room(job.unit, expected_factor_bytes(job.unit));
+  // After the job (kept if it fails): its factor's true size, and what it was rebuilt for.
+  auto account = [&](proto::JobOutput& out) {
+    if (budget_ > 0) evicted += make_room(job.unit, point.factor_bytes());
+    out.factor_evictions = evicted;
+    out.factor_rebuilt = out.factor_rebuilt && rec.dropped;  // not after a move or rollback
+    if (out.factor_rebuilt) ++rec.counts.rebuilds, ++totals_.rebuilds;
+    if (point.factor_bytes() > 0) {
+      rec.bytes = point.factor_bytes();
+      rec.dropped = false;
+    }
+    peak_held_ = std::max(peak_held_, held_factor_bytes());
+  };
   try {
     proto::JobOutput out = it->second->iterate(job);
     // What the scheduler needs to plan moves, from the point itself (its policy and
@@ -100,12 +166,14 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
         (p.next_refresh(job.step, 1) ? proto::restart_step : 0) |
         (p.next_refresh(job.step + 1, 1) ? proto::next_step : 0));
     out.state_bytes = p.state_bytes();
+    account(out);
     return out;
   } catch (const NumericalError& e) {
     proto::JobOutput out;
     out.unit = job.unit;
     out.failed = 1;
     out.message = e.what();
+    account(out);
     return out;
   }
 }
@@ -132,6 +200,7 @@ Bytes UnitStore::take(int unit) {
   Bytes b;
   it->second->serialize(b);
   units_.erase(it);
+  factor_.erase(unit);
   return b;
 }
 

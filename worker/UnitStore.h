@@ -2,6 +2,14 @@
 // The units that live on this rank (a unit runs where its state lives), by global id.
 // Builds them fresh, runs their jobs, commits or rolls them back, and moves their
 // state out and in as bytes when the rebalancer migrates them.
+//
+// Factor memory budget (farm.factor_memory_budget): the cached factors of the units
+// here may hold at most that many bytes. Before a job whose unit has no factor (first
+// job, after a move, a rollback or a drop) and again after it (a factor's true size is
+// known once built), the factors of the least recently used other units are dropped
+// until the held ones fit; a dropped unit rebuilds its factor from the matrix it was
+// made of on its next job (bit for bit: the answer does not change), and that rebuild's
+// CPU time lands in the job's measured cost, which the rebalancer reads.
 #include "proto/job.h"
 #include "proto/messages.h"
 #include "worker/point_models.h"
@@ -30,6 +38,19 @@ class UnitStore {
   /// fe2::Error if the unit is not here or is not an FE² unit.
   proto::UnitFields fields(int unit, int step) const;
 
+  /// Bytes of factors this rank may hold (0: unlimited).
+  void set_factor_budget(double bytes) { budget_ = bytes; }
+  double factor_budget() const { return budget_; }
+  /// Bytes of the factors held now, and the most held after any job.
+  double held_factor_bytes() const;
+  double peak_factor_bytes() const { return peak_held_; }
+  /// Factors dropped for the budget, and factors rebuilt because they had been.
+  struct FactorCounts {
+    long long evictions = 0, rebuilds = 0;
+  };
+  FactorCounts factor_counts() const { return totals_; }  ///< this rank, since it started
+  FactorCounts factor_counts(int unit) const;             ///< one unit, while it lives here
+
   /// Serializes a unit and removes it from this rank.
   Bytes take(int unit);
   /// Rebuilds a unit that arrives from another rank.
@@ -52,6 +73,24 @@ class UnitStore {
   const std::vector<int>& model_of_unit_;
   std::map<int, PointModelPtr> units_;
   Fault fault_;
+
+  /// Drops least recently used factors of units other than `in_use` until those held
+  /// plus `need` bytes fit the budget; returns how many it dropped.
+  int make_room(int in_use, double need);
+  /// The size a factor of `unit` will have: its own last one, else that of a unit of
+  /// the same model here, else 0 (unknown until built; the check after the job fixes it).
+  double expected_factor_bytes(int unit) const;
+  struct FactorRecord {
+    long long last_use = 0;  ///< store clock at its last job
+    double bytes = 0;        ///< size of its last factor (0: never built here)
+    bool dropped = false;    ///< dropped by the budget and not rebuilt since
+    FactorCounts counts;
+  };
+  double budget_ = 0;
+  long long clock_ = 0;
+  std::map<int, FactorRecord> factor_;
+  FactorCounts totals_;
+  double peak_held_ = 0;
 };
 
 }  // namespace fe2

@@ -77,7 +77,8 @@ MicroMemoryEstimate estimate_micro_memory(std::array<long long, 3> cells, long l
   m.pattern_nnz = std::min(81.0 * m.dofs, static_cast<double>(m.dofs) * m.dofs);
   m.factor_entries = fill_entries(cells) * (lu ? 2.0 : 1.0);
   m.model_bytes = kPerElementModel * elements + kPerNodeModel * nodes + kPerNonzeroModel * m.pattern_nnz;
-  m.unit_bytes = kPerDofUnit * m.dofs + kPerNonzeroUnit * m.pattern_nnz + kPerFactorEntry * m.factor_entries;
+  m.factor_bytes = kPerFactorEntry * m.factor_entries;
+  m.unit_bytes = kPerDofUnit * m.dofs + kPerNonzeroUnit * m.pattern_nnz + m.factor_bytes;
   return m;
 }
 

@@ -29,6 +29,8 @@ struct MicroMemoryEstimate {
   double factor_entries = 0;   ///< nonzeros of the factor (L, or L and U)
   double model_bytes = 0;      ///< shared by all units of the model on a rank
   double unit_bytes = 0;       ///< each unit
+  double factor_bytes = 0;     ///< the sparse factor alone (part of unit_bytes): what a
+                               ///< farm.factor_memory_budget must hold at least once
 
   /// Bytes of `units` units of this model on one rank (0 units: nothing).
   double bytes_for(long long units) const {

@@ -346,7 +346,16 @@ Schema make_run_spec_schema() {
                         "liveness limit, wall seconds: a rank that waits this long for a message "
                         "stops the job naming the silent rank; must exceed the longest wait of a "
                         "healthy run: one Newton iteration (micro phase and macro solve) plus an "
-                        "output write")}})},
+                        "output write")},
+                {"factor_memory_budget",
+                 custom("bytes: a number > 0 or a size such as \"2G\", \"500M\"",
+                        "sparse factors a worker rank may hold; past it the least recently used "
+                        "factors of other units are dropped and rebuilt on their next job "
+                        "(counted in summary.factor_memory); default: unlimited",
+                        {{"anyOf",
+                          {{{"type", "number"}, {"exclusiveMinimum", 0}},
+                           {{"type", "string"},
+                            {"pattern", "^[0-9]*[.]?[0-9]+([eE][+-]?[0-9]+)?[kKMGT]?$"}}}}})}})},
        {"output",
         object(false, "results",
                {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},

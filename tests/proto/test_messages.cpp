@@ -32,6 +32,8 @@ JobOutput some_result(int unit) {
   o.kind = Refresh::refresh;
   o.cpu_seconds = 0.1;
   o.active_tension = 4.5e4 + unit;
+  o.factor_evictions = 2 + unit;
+  o.factor_rebuilt = 1;
   o.failed = 1;
   o.message = "did not converge";
   return o;
@@ -85,6 +87,8 @@ TEST(Messages, PullCarriesResultsExactly) {
   EXPECT_EQ(back.results[0].message, "did not converge");
   EXPECT_EQ(back.results[0].kind, Refresh::refresh);
   EXPECT_EQ(back.results[1].active_tension, p.results[1].active_tension);
+  EXPECT_EQ(back.results[1].factor_evictions, 9);
+  EXPECT_EQ(back.results[0].factor_rebuilt, 1);
   EXPECT_EQ(back.max_jobs, 3);
   expect_rejects_corruption<Pull>(bytes);
 }
@@ -158,6 +162,8 @@ TEST(Messages, CostReportRoundTripAndCorruption) {
   EXPECT_EQ(j.next_refresh, next_step | restart_step);
   EXPECT_EQ(j.state_bytes, 123456789u);
   EXPECT_EQ(j.failed, 0);
+  EXPECT_EQ(j.factor_evictions, 14);
+  EXPECT_EQ(j.factor_rebuilt, 1);
   EXPECT_EQ(back.jobs[1].failed, 1);
   expect_rejects_corruption<CostReport>(bytes);
   // Values that would mislead the rebalancer are refused on receipt.
@@ -173,6 +179,8 @@ TEST(Messages, CostReportRoundTripAndCorruption) {
   EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.cpu_refresh = NAN; })), Error);
   EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.next_refresh = 8; })), Error);
   EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.kind = static_cast<Refresh>(2); })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.factor_evictions = -1; })), Error);
+  EXPECT_THROW(CostReport::unpack(with([](JobCost& x) { x.factor_rebuilt = 2; })), Error);
   // A message of another type is refused.
   Pull p;
   Bytes other;
