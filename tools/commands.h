@@ -64,4 +64,13 @@ struct FarmSimOptions {
 };
 int farm_sim(const FarmSimOptions& o);
 
+/// `fe2heart study`: variants of a base spec run, costed and compared (tools/cmd_study.cpp).
+struct StudyOptions {
+  std::string spec;
+  std::string out;
+  int np = 0;  ///< 0: the study file's "np"
+  bool overwrite = false;
+};
+int study(const StudyOptions& o);
+
 }  // namespace fe2::cli

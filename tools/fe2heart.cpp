@@ -120,6 +120,30 @@ int main(int argc, char** argv) {
   c_sim->add_option("--macro-scale", sim.macro_scale, "multiply the measured Macro time");
   c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
 
+  fe2::cli::StudyOptions study;
+  auto* c_study = app.add_subcommand(
+      "study", "run variants of a base spec, measure their cost and error against a reference: "
+               "DIR/study.json, study.csv, study.txt, pareto.png (README \"What accuracy costs\")");
+  c_study->footer(
+      "STUDY.json:\n"
+      "  \"base\": \"spec.json\"            the base run spec (relative to the study file)\n"
+      "  \"variants\": [{\"name\": \"fine\", \"set\": {\"/time/steps\": 16, \"/newton/rtol\": 1e-10}}]\n"
+      "                                  edits by JSON pointer (RFC 6901); {} runs the base unchanged\n"
+      "  \"one_at_a_time\": {\"/time/steps\": [4, 8]}   one variant per value, named steps=4, steps=8\n"
+      "  \"reference\": \"finest\"          the variant with the most CPU seconds (default), a variant\n"
+      "                                  name, or {\"run\": \"DIR of an earlier run\"}\n"
+      "  \"quantities\": [...]            displacement (of the probes), probes, cavity_volumes,\n"
+      "                                  cavity_pressures, load_pressures, or a pointer into\n"
+      "                                  summary.json such as \"/circulation/cavities/lv/EF\"\n"
+      "  \"np\": 1                        ranks per variant; \"mpirun\": [\"mpirun\", \"-n\", \"{np}\"]\n"
+      "Error: max over steps and entries of |q - q_ref| / max |q_ref|, the reference interpolated\n"
+      "linearly in time at the variant's step times. Each variant runs as `fe2heart run` in\n"
+      "DIR/variants/NAME/run; a failed one is reported with its exit code and last error line.");
+  c_study->add_option("study", study.spec, "study file (JSON)")->required();
+  c_study->add_option("--out", study.out, "output folder")->required();
+  c_study->add_option("--np", study.np, "ranks per variant (overrides \"np\")")->check(CLI::Range(1, 100000));
+  c_study->add_flag("--overwrite", study.overwrite, "replace an earlier study in --out");
+
   int rc = 0;
   try {
     app.parse(argc, argv);
@@ -143,6 +167,7 @@ int main(int argc, char** argv) {
     else if (*c_schema && schema_circulation) rc = fe2::cli::spec_schema_circulation();
     else if (*c_schema) rc = fe2::cli::spec_schema(schema_unit);
     else if (*c_circulation) rc = fe2::cli::circulation(circulation);
+    else if (*c_study) rc = fe2::cli::study(study);
   } catch (const fe2::Error& e) {
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -1,0 +1,369 @@
+// `fe2heart study STUDY.json --out DIR`: runs each variant of a base scene as a child
+// `fe2heart run` (under mpirun for NP > 1), measures what it cost, compares it with a
+// reference on the declared quantities, and writes study.json, study.csv, study.txt and
+// pareto.png. A failed variant stays in the results; only bad input stops the study.
+#include "common/io/atomic_file.h"
+#include "coordinator/RunSpec.h"
+#include "tools/commands.h"
+#include "tools/study_error.h"
+#include "tools/study_spec.h"
+
+#include <mpi.h>
+#include <fcntl.h>
+#include <spawn.h>
+#include <spdlog/spdlog.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+extern char** environ;
+
+namespace fe2::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What one variant cost and how it ended.
+struct VariantResult {
+  std::string status = "not run";  ///< "ok" or "failed"
+  int exit_code = 0;
+  std::string reason;  ///< a failed variant's last error line
+  double wall = 0, cpu = 0, core_hours = 0, peak_rss_mb = 0;
+  json summary;  ///< its summary.json (null if none)
+  std::map<std::string, QuantityError> errors;
+  double error = -1;  ///< max over quantities; < 0: none
+  bool pareto = false;
+};
+
+/// Variables the launcher of *this* process set (when it was itself started by mpirun)
+/// would make a nested mpirun or singleton think it is part of our job; the user's own
+/// OMPI_MCA_* settings (oversubscribe, run as root, ...) pass through.
+bool launcher_variable(const std::string& v) {
+  static const char* prefixes[] = {"PMIX_", "OMPI_COMM_WORLD", "OMPI_UNIVERSE_SIZE", "OMPI_FIRST_RANKS",
+                                   "OMPI_APP_CTX", "OMPI_NUM_APP_CTX", "OMPI_FILE_LOCATION", "OMPI_ARGV",
+                                   "OMPI_COMMAND", "OMPI_MCA_orte_", "OMPI_MCA_ess", "OMPI_MCA_pmix",
+                                   "OMPI_MCA_initial_wdir", "OMPI_MCA_ompi_", "OMPI_MCA_opal_",
+                                   "OMPI_MCA_shmem_RUNTIME_QUERY", "OMPI_MCA_plm", "OMPI_MCA_rmaps_ppr",
+                                   "OMPI_MCA_mpi_oversubscribe", "OMPI_MCA_hwloc_base"};
+  for (const char* p : prefixes)
+    if (v.rfind(p, 0) == 0) return true;
+  return false;
+}
+
+/// The last error line of a variant's console log (spdlog "[error]"/"[critical]", or
+/// failing that, its last non-empty line), without terminal colours.
+std::string last_error_line(const std::string& log) {
+  std::ifstream in(log);
+  std::string line, error, last;
+  static const std::regex colour("\x1b\\[[0-9;]*m");
+  while (std::getline(in, line)) {
+    line = std::regex_replace(line, colour, "");
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    last = line;
+    if (line.find("[error]") != std::string::npos || line.find("[critical]") != std::string::npos) error = line;
+  }
+  // Without the log's "[time] [level] " prefix.
+  static const std::regex prefix("^\\[[0-9:. -]+\\] \\[[a-z]+\\] ");
+  return std::regex_replace(error.empty() ? last : error, prefix, "");
+}
+
+/// Runs argv with stdout and stderr to `log`; wall seconds and the child's rusage
+/// (wait4: its CPU time and that of the processes it waited for, e.g. mpirun's ranks).
+int run_child(const std::vector<std::string>& argv, const std::string& log, VariantResult& r) {
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e; ++e)
+    if (!launcher_variable(*e)) env_strings.emplace_back(*e);
+  std::vector<char*> envp, args;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> argv_copy = argv;
+  for (auto& a : argv_copy) args.push_back(a.data());
+  args.push_back(nullptr);
+
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), envp.data());
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0) {
+    r.reason = fmt::format("cannot start '{}': {}", argv[0], std::strerror(rc));
+    return 127;
+  }
+  int status = 0;
+  struct rusage ru {};
+  while (wait4(pid, &status, 0, &ru) < 0)
+    if (errno != EINTR) throw Error(fmt::format("wait4 for '{}' failed: {}", argv[0], std::strerror(errno)));
+  r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.cpu = ru.ru_utime.tv_sec + 1e-6 * ru.ru_utime.tv_usec + ru.ru_stime.tv_sec + 1e-6 * ru.ru_stime.tv_usec;
+  r.peak_rss_mb = ru.ru_maxrss / 1024.0;  // kB on Linux
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) {
+    r.reason = fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+    return 128 + WTERMSIG(status);
+  }
+  return 1;
+}
+
+std::string number(double x, const char* fmt_spec = "{:.3g}") {
+  return x < 0 || !std::isfinite(x) ? std::string("-") : fmt::format(fmt::runtime(fmt_spec), x);
+}
+
+long long summary_int(const json& s, const json::json_pointer& p) {
+  return s.is_object() && s.contains(p) && s.at(p).is_number() ? s.at(p).get<long long>() : -1;
+}
+
+double summary_double(const json& s, const json::json_pointer& p) {
+  return s.is_object() && s.contains(p) && s.at(p).is_number() ? s.at(p).get<double>() : -1.0;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (char c : s) {
+    if (c == '"') quoted += '"';  // doubled, as RFC 4180 has it
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
+}  // namespace
+
+int study(const StudyOptions& o) {
+  int ranks = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (ranks != 1)
+    throw InputError(fmt::format("fe2heart study runs as one process ({} ranks here); it starts each variant "
+                                 "under mpirun itself (\"np\" in the study file, or --np)",
+                                 ranks));
+  StudySpec s = read_study_spec(o.spec);
+  const int np = o.np > 0 ? o.np : s.np;
+  std::vector<std::string> launcher;
+  for (std::string a : s.mpirun) {
+    for (size_t at; (at = a.find("{np}")) != std::string::npos;) a.replace(at, 4, std::to_string(np));
+    launcher.push_back(a);
+  }
+  if (s.mpirun.empty() && np > 1) launcher = {"mpirun", "-n", std::to_string(np)};
+
+  // The output folder: an earlier study is refused without --overwrite, before anything is written.
+  std::error_code ec;
+  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
+    throw InputError(fmt::format("--out '{}' exists and is not a folder; expected a folder for the study", o.out));
+  if (!o.overwrite && (fs::exists(fs::path(o.out) / "study.json", ec) || fs::exists(fs::path(o.out) / "variants", ec)))
+    throw InputError(fmt::format("--out '{}' already holds a study (study.json or variants/); use --overwrite "
+                                 "to replace it, or another --out",
+                                 o.out));
+
+  // Every variant must be a valid run spec before any runs (an error names the variant).
+  for (const StudyVariant& v : s.variants) {
+    const std::string file = (fs::path(o.out) / "variants" / v.name / "spec.json").string();
+    try {
+      (void)read_run_spec(v.spec, file, nullptr, /*build_units=*/false);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("study file '{}': variant '{}' (set {}) is not a valid run spec: {}", s.file,
+                                   v.name, v.set.dump(), e.what()));
+    }
+  }
+  for (const StudyVariant& v : s.variants) {
+    const fs::path d = fs::path(o.out) / "variants" / v.name;
+    fs::create_directories(d, ec);
+    if (ec) throw InputError(fmt::format("--out '{}': cannot create '{}' ({})", o.out, d.string(), ec.message()));
+    write_file_atomically((d / "spec.json").string(), v.spec.dump(2) + "\n");
+  }
+
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  std::vector<VariantResult> results(s.variants.size());
+  fmt::print("study {}: {} variants of {}, {} rank{} each\n", s.file, s.variants.size(), s.base, np,
+             np == 1 ? "" : "s");
+  std::fflush(stdout);
+  for (size_t i = 0; i < s.variants.size(); ++i) {
+    const StudyVariant& v = s.variants[i];
+    VariantResult& r = results[i];
+    const fs::path d = fs::path(o.out) / "variants" / v.name;
+    std::vector<std::string> argv = launcher;
+    for (const std::string& a : {self, std::string("run"), (d / "spec.json").string(), std::string("--out"),
+                                 (d / "run").string(), std::string("--overwrite")})
+      argv.push_back(a);
+    r.exit_code = run_child(argv, (d / "run.log").string(), r);
+    r.core_hours = r.wall * np / 3600.0;
+    try {
+      r.summary = read_json_file((d / "run" / "summary.json").string());
+    } catch (const InputError&) {
+      r.summary = nullptr;
+    }
+    const bool converged = r.summary.is_object() && r.summary.value("converged", false);
+    r.status = r.exit_code == 0 && converged ? "ok" : "failed";
+    if (r.status == "failed" && r.reason.empty()) {
+      r.reason = last_error_line((d / "run.log").string());
+      if (r.reason.empty()) r.reason = fmt::format("exit code {}", r.exit_code);
+    }
+    fmt::print("[{}/{}] {}: {} in {:.1f} s (CPU {:.1f} s){}\n", i + 1, s.variants.size(), v.name, r.status, r.wall,
+               r.cpu, r.status == "ok" ? "" : ": " + r.reason);
+    std::fflush(stdout);
+  }
+
+  // The reference: a named variant, an earlier run, or the costliest variant that ran.
+  std::string ref_dir, ref_name;
+  std::string ref_problem;
+  if (s.reference == StudySpec::Reference::run) {
+    ref_dir = s.reference_run;
+    ref_name = "run " + s.reference_run;
+  } else {
+    long best = -1;
+    for (size_t i = 0; i < s.variants.size(); ++i) {
+      if (s.reference == StudySpec::Reference::variant ? s.variants[i].name == s.reference_variant
+                                                       : results[i].status == "ok" &&
+                                                             (best < 0 || results[i].cpu > results[best].cpu))
+        best = static_cast<long>(i);
+    }
+    if (best >= 0) {
+      ref_name = s.variants[best].name;
+      ref_dir = (fs::path(o.out) / "variants" / ref_name / "run").string();
+      if (results[best].status != "ok") ref_problem = fmt::format("the reference variant '{}' failed", ref_name);
+    } else {
+      ref_problem = "no variant ran to the end, so there is no finest one";
+    }
+  }
+  std::map<std::string, QuantitySeries> ref_q;
+  if (ref_problem.empty())
+    for (const std::string& q : s.quantities) try {
+        ref_q[q] = read_quantity(ref_dir, q);
+      } catch (const InputError& e) {
+        ref_problem = fmt::format("reference {}: {}", ref_name, e.what());
+      }
+  if (!ref_problem.empty()) spdlog::warn("no errors computed: {}", ref_problem);
+
+  for (size_t i = 0; i < s.variants.size() && ref_problem.empty(); ++i) {
+    VariantResult& r = results[i];
+    if (r.status != "ok") continue;
+    const std::string dir = (fs::path(o.out) / "variants" / s.variants[i].name / "run").string();
+    for (const std::string& q : s.quantities) {
+      QuantityError e;
+      try {
+        e = compare_quantity(read_quantity(dir, q), ref_q[q]);
+      } catch (const InputError& x) {
+        e.note = x.what();
+      }
+      r.errors[q] = e;
+      if (e.error >= 0) r.error = std::max(r.error, e.error);
+    }
+  }
+  // The Pareto front over (CPU seconds, error): no other variant is as cheap and as accurate, and better in one.
+  for (size_t i = 0; i < results.size(); ++i) {
+    if (results[i].error < 0) continue;
+    results[i].pareto = true;
+    for (size_t k = 0; k < results.size(); ++k)
+      if (k != i && results[k].error >= 0 && results[k].cpu <= results[i].cpu && results[k].error <= results[i].error &&
+          (results[k].cpu < results[i].cpu || results[k].error < results[i].error))
+        results[i].pareto = false;
+  }
+
+  // study.json
+  json out = {{"study", s.file},
+              {"title", s.title},
+              {"base", s.base},
+              {"np", np},
+              {"launcher", launcher},
+              {"quantities", s.quantities},
+              {"reference", {{"name", ref_name}, {"dir", ref_dir}}},
+              {"error_definition", "max over compared step times and entries of |q - q_ref|, divided by max |q_ref| "
+                                   "(absolute if q_ref is 0); the reference interpolated linearly in time at each "
+                                   "of the variant's step times"},
+              {"cost_definition", "wall_seconds and cpu_seconds of the child process tree (wait4 rusage: user + "
+                                  "system of mpirun and the ranks it waited for); core_hours = wall x np / 3600; "
+                                  "peak_rss_mb: the largest process"}};
+  if (!ref_problem.empty()) out["reference"]["problem"] = ref_problem;
+  json vs = json::array();
+  for (size_t i = 0; i < s.variants.size(); ++i) {
+    const VariantResult& r = results[i];
+    const json& sm = r.summary;
+    json v = {{"name", s.variants[i].name},
+              {"set", s.variants[i].set},
+              {"status", r.status},
+              {"exit_code", r.exit_code},
+              {"wall_seconds", r.wall},
+              {"cpu_seconds", r.cpu},
+              {"core_hours", r.core_hours},
+              {"peak_rss_mb", r.peak_rss_mb},
+              {"newton_iterations", summary_int(sm, "/newton_iterations"_json_pointer)},
+              {"gmres_iterations", summary_int(sm, "/gmres_iterations"_json_pointer)},
+              {"refreshes", summary_int(sm, "/refreshes"_json_pointer)},
+              {"macro_factorizations", summary_int(sm, "/macro_solver/factorizations"_json_pointer)},
+              {"micro_cpu_seconds", summary_double(sm, "/micro_cpu_seconds"_json_pointer)},
+              {"steps", summary_int(sm, "/steps"_json_pointer)},
+              {"reference", s.variants[i].name == ref_name},
+              {"pareto", r.pareto},
+              {"run", (fs::path("variants") / s.variants[i].name / "run").string()}};
+    if (!r.reason.empty()) v["reason"] = r.reason;
+    v["error"] = r.error >= 0 ? json(r.error) : json(nullptr);
+    json per = json::object();
+    for (const auto& [q, e] : r.errors) {
+      per[q] = {{"error", e.error >= 0 ? json(e.error) : json(nullptr)}, {"times", e.times}};
+      if (!e.note.empty()) per[q]["note"] = e.note;
+    }
+    v["errors"] = per;
+    vs.push_back(v);
+  }
+  out["variants"] = vs;
+  write_file_atomically((fs::path(o.out) / "study.json").string(), out.dump(2) + "\n");
+
+  // study.csv: one row per variant
+  std::string csv = "name,status,exit_code,wall_seconds,cpu_seconds,core_hours,peak_rss_mb,newton_iterations,"
+                    "gmres_iterations,refreshes,macro_factorizations,micro_cpu_seconds,error";
+  for (const std::string& q : s.quantities) csv += ",error " + csv_field(q);
+  csv += ",pareto,set,reason\n";
+  for (const json& v : vs) {
+    auto num = [](const json& x) { return x.is_null() ? std::string() : x.dump(); };
+    csv += fmt::format("{},{},{},{:.3f},{:.3f},{:.6f},{:.1f},{},{},{},{},{:.3f},{}", csv_field(v["name"]),
+                       v["status"].get<std::string>(), v["exit_code"].get<int>(), v["wall_seconds"].get<double>(),
+                       v["cpu_seconds"].get<double>(), v["core_hours"].get<double>(), v["peak_rss_mb"].get<double>(),
+                       v["newton_iterations"].dump(), v["gmres_iterations"].dump(), v["refreshes"].dump(),
+                       v["macro_factorizations"].dump(), v["micro_cpu_seconds"].get<double>(), num(v["error"]));
+    for (const std::string& q : s.quantities)
+      csv += "," + (v["errors"].contains(q) ? num(v["errors"][q]["error"]) : std::string());
+    csv += fmt::format(",{},{},{}\n", v["pareto"].get<bool>() ? 1 : 0, csv_field(v["set"].dump()),
+                       csv_field(v.value("reason", "")));
+  }
+  write_file_atomically((fs::path(o.out) / "study.csv").string(), csv);
+
+  // study.txt: the short table, also printed
+  std::string txt = fmt::format("study {} ({} ranks per variant); reference: {}\n", s.file, np,
+                                ref_problem.empty() ? ref_name : ref_problem);
+  txt += fmt::format("error: max over {} of |q - q_ref| / max |q_ref|; * = Pareto front (CPU s, error)\n",
+                     fmt::join(s.quantities, ", "));
+  txt += fmt::format("{:<28} {:>7} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9} {:>8} {:>10}\n", "variant", "status", "wall s",
+                     "CPU s", "RSS MB", "Newton", "GMRES", "refreshes", "macro f.", "error");
+  for (size_t i = 0; i < vs.size(); ++i) {
+    const json& v = vs[i];
+    const std::string name = v["name"].get<std::string>() + (v["pareto"].get<bool>() ? " *" : "");
+    txt += fmt::format("{:<28} {:>7} {:>9.2f} {:>9.2f} {:>8.0f} {:>7} {:>7} {:>9} {:>8} {:>10}\n", name,
+                       v["status"].get<std::string>(), v["wall_seconds"].get<double>(), v["cpu_seconds"].get<double>(),
+                       v["peak_rss_mb"].get<double>(), number(v["newton_iterations"].get<double>(), "{:.0f}"),
+                       number(v["gmres_iterations"].get<double>(), "{:.0f}"),
+                       number(v["refreshes"].get<double>(), "{:.0f}"),
+                       number(v["macro_factorizations"].get<double>(), "{:.0f}"),
+                       v["reference"].get<bool>() ? std::string("reference")
+                                                  : number(results[i].error, "{:.2e}"));
+    if (results[i].status != "ok") txt += fmt::format("    failed (exit {}): {}\n", results[i].exit_code, results[i].reason);
+  }
+  write_file_atomically((fs::path(o.out) / "study.txt").string(), txt);
+  fmt::print("{}", txt);
+
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_STUDY_PLOT_SCRIPT, o.out);
+  if (std::system(cmd.c_str()) != 0)
+    spdlog::warn("no pareto.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+  fmt::print("results: {}/study.json, study.csv, study.txt, pareto.png\n", o.out);
+  return 0;
+}
+
+}  // namespace fe2::cli

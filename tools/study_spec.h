@@ -1,0 +1,51 @@
+#pragma once
+// A study file (`fe2heart study STUDY.json`): a base run spec, the variants to run
+// from it (each a set of JSON-pointer edits), the reference to compare them with, the
+// quantities compared, and how each variant is launched. See README "What accuracy costs".
+//
+//   {"base": "farm_beam.json",                     // relative to the study file
+//    "variants": [{"name": "fine", "set": {"/time/steps": 16}}, ...],
+//    "one_at_a_time": {"/time/steps": [4, 8]},      // one variant per value
+//    "reference": "finest" | "<variant name>" | {"run": "DIR of an earlier run"},
+//    "quantities": ["displacement", "cavity_volumes", "/circulation/cavities/lv/EF"],
+//    "np": 1, "mpirun": ["mpirun", "-n", "{np}"]}
+//
+// Every problem is an InputError naming the study file, the key, the value and what
+// was expected; nothing here writes files.
+#include "common/spec/SpecNode.h"
+
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+struct StudyVariant {
+  std::string name;  ///< also its folder: DIR/variants/<name>
+  json set;          ///< {"/pointer": value, ...}: what differs from the base
+  json spec;         ///< the base spec with `set` applied, file paths made absolute
+};
+
+struct StudySpec {
+  std::string file;  ///< the study file, as given
+  std::string title;
+  std::string base;  ///< the base spec's path (resolved against the study file)
+  json base_spec;
+  std::vector<StudyVariant> variants;
+  enum class Reference { finest, variant, run } reference = Reference::finest;
+  std::string reference_variant;  ///< Reference::variant
+  std::string reference_run;      ///< Reference::run: a run folder (resolved)
+  std::vector<std::string> quantities;
+  int np = 1;
+  /// The launcher as given ("{np}" stands for the ranks); empty: not given, so
+  /// `mpirun -n NP` for NP > 1 and the binary alone for NP = 1.
+  std::vector<std::string> mpirun;
+};
+
+/// The quantities a study can compare by name (others are JSON pointers into summary.json).
+const std::vector<std::string>& study_quantity_names();
+
+/// Reads and checks a study file and builds every variant's spec (not yet validated as
+/// a run spec: cmd_study does that, naming the variant).
+StudySpec read_study_spec(const std::string& file);
+
+}  // namespace fe2
