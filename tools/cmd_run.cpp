@@ -11,6 +11,7 @@
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
+#include "tools/study_spec.h"
 #include "worker/unit_spec.h"
 #include "worker/worker_loop.h"
 
@@ -129,6 +130,7 @@ int validate(const std::string& file, const std::string& memory_limit_text) {
   const MemoryLimit limit = memory_limit(memory_limit_text);
   const json j = read_json_file(file);
   if (is_circulation_run_spec(j)) return validate_circulation(file);
+  if (is_study_spec(j)) return validate_study(file);  // fe2heart study (tools/cmd_study.cpp)
   if (j.is_object() && j.contains("unit") && !j.contains("mesh")) {
     const UnitSpec u = read_unit_spec(j, file, nullptr, false);
     check_unit_memory(*u.plan, 1, limit);

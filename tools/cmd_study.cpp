@@ -20,6 +20,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <ranges>
 #include <regex>
 
 extern char** environ;
@@ -137,7 +138,32 @@ std::string csv_field(const std::string& s) {
   return quoted + '"';
 }
 
+/// Every variant must be a valid run spec before any runs (an error names the variant).
+void check_variants(const StudySpec& s, const std::string& out) {
+  for (const StudyVariant& v : s.variants) {
+    const std::string file = (fs::path(out) / "variants" / v.name / "spec.json").string();
+    try {
+      (void)read_run_spec(v.spec, file, nullptr, /*build_units=*/false);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("study file '{}': variant '{}' (set {}) is not a valid run spec: {}", s.file,
+                                   v.name, v.set.dump(), e.what()));
+    }
+  }
+}
+
 }  // namespace
+
+int validate_study(const std::string& file) {
+  const StudySpec s = read_study_spec(file);
+  check_variants(s, "DIR");
+  fmt::print("{}: OK: study of {} with {} variants ({}); reference {}; quantities {}\n", file, s.base,
+             s.variants.size(), fmt::join(s.variants | std::views::transform(&StudyVariant::name), ", "),
+             s.reference == StudySpec::Reference::run       ? "run " + s.reference_run
+             : s.reference == StudySpec::Reference::variant ? s.reference_variant
+                                                            : std::string("finest"),
+             fmt::join(s.quantities, ", "));
+  return 0;
+}
 
 int study(const StudyOptions& o) {
   int ranks = 1;
@@ -164,16 +190,7 @@ int study(const StudyOptions& o) {
                                  "to replace it, or another --out",
                                  o.out));
 
-  // Every variant must be a valid run spec before any runs (an error names the variant).
-  for (const StudyVariant& v : s.variants) {
-    const std::string file = (fs::path(o.out) / "variants" / v.name / "spec.json").string();
-    try {
-      (void)read_run_spec(v.spec, file, nullptr, /*build_units=*/false);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("study file '{}': variant '{}' (set {}) is not a valid run spec: {}", s.file,
-                                   v.name, v.set.dump(), e.what()));
-    }
-  }
+  check_variants(s, o.out);
   for (const StudyVariant& v : s.variants) {
     const fs::path d = fs::path(o.out) / "variants" / v.name;
     fs::create_directories(d, ec);

@@ -72,5 +72,7 @@ struct StudyOptions {
   bool overwrite = false;
 };
 int study(const StudyOptions& o);
+/// `validate` of a study file: the study and every variant's run spec; runs nothing.
+int validate_study(const std::string& file);
 
 }  // namespace fe2::cli

@@ -182,6 +182,10 @@ const std::vector<std::string>& study_quantity_names() {
   return names;
 }
 
+bool is_study_spec(const json& j) {
+  return j.is_object() && j.contains("base") && (j.contains("variants") || j.contains("one_at_a_time"));
+}
+
 StudySpec read_study_spec(const std::string& file) {
   StudySpec s;
   s.file = file;

@@ -44,6 +44,9 @@ struct StudySpec {
 /// The quantities a study can compare by name (others are JSON pointers into summary.json).
 const std::vector<std::string>& study_quantity_names();
 
+/// Whether `j` looks like a study file (a "base" and variants) rather than a spec.
+bool is_study_spec(const json& j);
+
 /// Reads and checks a study file and builds every variant's spec (not yet validated as
 /// a run spec: cmd_study does that, naming the variant).
 StudySpec read_study_spec(const std::string& file);

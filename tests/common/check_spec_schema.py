@@ -54,6 +54,8 @@ validators = {k: jsonschema.Draft202012Validator(s) for k, s in schemas.items()}
 
 
 def kind_of(spec):
+    if "base" in spec and ("variants" in spec or "one_at_a_time" in spec):
+        return "study"  # fe2heart study: no schema; `validate` checks it and its variants
     if "ventricles" in spec or ("circulation" in spec and "mesh" not in spec):
         return "circulation"  # fe2heart circulation (common/circulation/circulation_run_spec.h)
     return "unit" if "unit" in spec and "mesh" not in spec else "run"
@@ -78,7 +80,7 @@ def check_specs():
     for path in good:
         with open(path) as f:
             spec = json.load(f)
-        errors = list(validators[kind_of(spec)].iter_errors(spec))
+        errors = list(validators[kind_of(spec)].iter_errors(spec)) if kind_of(spec) != "study" else []
         if errors:
             fail(f"{rel(path)}: the {kind_of(spec)} schema rejects it: {errors[0].message} "
                  f"at /{'/'.join(map(str, errors[0].absolute_path))}")
