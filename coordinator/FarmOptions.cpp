@@ -62,8 +62,8 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
   if (const json* b = farm.declared_value("factor_memory_budget", kBudgetType, kBudgetHelp)) {
     const std::string key = farm.key_path("factor_memory_budget");
     if (b->is_string()) {
-      fo.factor_memory_budget_text = b->get<std::string>();
-      fo.factor_memory_budget = parse_memory_size(fo.factor_memory_budget_text, key);
+      fo.factor_memory_budget_text = b->dump();  // quoted, as in the spec
+      fo.factor_memory_budget = parse_memory_size(b->get<std::string>(), key);
     } else if (b->is_number() && b->get<double>() > 0 && std::isfinite(b->get<double>())) {
       fo.factor_memory_budget = b->get<double>();
       fo.factor_memory_budget_text = b->dump();
@@ -89,10 +89,10 @@ void FarmOptions::check_factor_budget(const std::vector<PointModelSpec>& models,
     }
   if (largest && factor_memory_budget < need)
     throw InputError(fmt::format(
-        "/farm/factor_memory_budget: got {} ({}), below one factor of model '{}' (≈ {}, "
-        "estimated: {}); expected at least {:.0f} (bytes), or no budget",
-        factor_memory_budget_text, format_bytes(factor_memory_budget), largest->name,
-        format_bytes(need), largest->plan->memory.describe(), std::ceil(need)));
+        "/farm/factor_memory_budget: got {} ({}), expected at least {:.0f} bytes (≈ {}, one "
+        "factor of model '{}' by the memory estimate: {}), or no budget",
+        factor_memory_budget_text, format_bytes(factor_memory_budget), std::ceil(need),
+        format_bytes(need), largest->name, largest->plan->memory.describe()));
 }
 
 }  // namespace fe2

@@ -25,6 +25,20 @@ fe2_cli_test(cli.validate.memory_limit_1G 0 "fe2_beam[.]json: OK: .*unit memory 
 fe2_cli_test(cli.bad_input.memory_limit_syntax 2
              "--memory-limit: got '12Q', expected a positive size in bytes, optionally with a suffix k, M, G or T"
              ARGS validate --memory-limit 12Q ${FE2_CLI_BAD}/small_valid.json)
+# farm.factor_memory_budget (issue #11): a budget below one unit's factor (by the memory
+# estimate) is refused naming the key, the value and the smallest useful budget, before
+# anything runs; a text that is no size names the key and the text.
+set(budget "/farm/factor_memory_budget: got \"100k\" [(]102[.]4 kB[)], expected at least 185280 bytes [(]≈ 185[.]3 kB, one factor of model 'muscle' by the memory estimate: 189 DOF")
+fe2_cli_test(cli.bad_input.factor_budget_too_small.validate 2 "${budget}"
+             ARGS validate ${FE2_CLI_BAD}/factor_budget_too_small.json)
+fe2_cli_test(cli.bad_input.factor_budget_too_small.run 2 "${budget}"
+             ABSENT ${FE2_CLI_OUT}/factor_budget_too_small
+             ARGS run ${FE2_CLI_BAD}/factor_budget_too_small.json --out ${FE2_CLI_OUT}/factor_budget_too_small)
+fe2_cli_test(cli.bad_input.factor_budget_malformed 2
+             "/farm/factor_memory_budget: got '2 GB', expected a positive size in bytes, optionally with a suffix k, M, G or T"
+             ARGS validate ${FE2_CLI_BAD}/factor_budget_malformed.json)
+fe2_cli_test(cli.validate.factor_budget_valid 0 "factor_budget_valid[.]json: OK: .*6 FE² units"
+             ARGS validate ${FE2_CLI_BAD}/factor_budget_valid.json)
 
 # --- Nesting (item 12): 70,000 nested arrays crashed the reader (SIGSEGV).
 set(deep_json ${CMAKE_CURRENT_BINARY_DIR}/deep.json)

@@ -2,6 +2,8 @@
 //   farm_check compare REF OUT TOL [MIN_MIGRATIONS]   probe positions agree to TOL times the
 //                                                     largest probe displacement (0: bit for bit)
 //   farm_check imbalance DIR below|above X            imbalance after the first rebalance
+//   farm_check at_least DIR POINTER MIN               summary.json's number at a JSON pointer
+//                                                     (e.g. /factor_memory/evictions) >= MIN
 // Prints what it compared; exits 1 on a failed check, 2 on unreadable input.
 #include "coordinator/trace_analysis.h"
 
@@ -136,6 +138,18 @@ int main(int argc, char** argv) {
     std::printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
   }
-  std::cerr << "usage: farm_check compare REF OUT TOL [MIN_MIGRATIONS] | imbalance DIR below|above X\n";
+  if (mode == "at_least" && argc == 5) {
+    const json summary = read(std::string(argv[2]) + "/summary.json");
+    const json::json_pointer at(argv[3]);
+    if (!summary.contains(at) || !summary[at].is_number()) {
+      std::cerr << argv[2] << "/summary.json has no number at " << argv[3] << "\n";
+      return 2;
+    }
+    const double v = summary[at].get<double>(), min = std::stod(argv[4]);
+    std::printf("%s: %g (at least %g)\n%s\n", argv[3], v, min, v >= min ? "PASS" : "FAIL");
+    return v >= min ? 0 : 1;
+  }
+  std::cerr << "usage: farm_check compare REF OUT TOL [MIN_MIGRATIONS] | imbalance DIR below|above X | "
+               "at_least DIR POINTER MIN\n";
   return 2;
 }
