@@ -50,9 +50,8 @@ bool launcher_variable(const std::string& v) {
   static const char* prefixes[] = {"PMIX_", "OMPI_COMM_WORLD", "OMPI_UNIVERSE_SIZE", "OMPI_FIRST_RANKS",
                                    "OMPI_APP_CTX", "OMPI_NUM_APP_CTX", "OMPI_FILE_LOCATION", "OMPI_ARGV",
                                    "OMPI_COMMAND", "OMPI_MCA_orte_", "OMPI_MCA_ess", "OMPI_MCA_pmix",
-                                   "OMPI_MCA_initial_wdir", "OMPI_MCA_ompi_", "OMPI_MCA_opal_",
-                                   "OMPI_MCA_shmem_RUNTIME_QUERY", "OMPI_MCA_plm", "OMPI_MCA_rmaps_ppr",
-                                   "OMPI_MCA_mpi_oversubscribe", "OMPI_MCA_hwloc_base"};
+                                   "OMPI_MCA_initial_wdir", "OMPI_MCA_shmem_RUNTIME_QUERY",
+                                   "OMPI_MCA_mpi_oversubscribe"};  // what Open MPI 4.1's mpirun sets
   for (const char* p : prefixes)
     if (v.rfind(p, 0) == 0) return true;
   return false;
