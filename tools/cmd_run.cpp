@@ -107,13 +107,14 @@ std::string fatal_log_line(int rank, const std::string& what) {
 }
 
 /// Refuses a run whose units would not fit: each rank's starting share (units of each
-/// model, with the model's shared data) against the memory limit, before any is built.
+/// model, with the model's shared data; factors up to farm.factor_memory_budget) against
+/// the memory limit, before any is built.
 void check_run_memory(const RunSpec& spec, const FarmLayout& layout, const std::string& limit) {
   std::vector<std::vector<long long>> units(layout.ranks,
                                             std::vector<long long>(spec.models.size(), 0));
   const std::vector<int> model = spec.model_of_points();
   for (size_t u = 0; u < model.size(); ++u) ++units[layout.initial_worker_of_unit[u]][model[u]];
-  check_unit_memory(spec.models, units, memory_limit(limit));
+  check_unit_memory(spec.models, units, memory_limit(limit), spec.farm.factor_memory_budget);
 }
 
 std::string format_duration(double s) {

@@ -61,7 +61,8 @@ std::string size_value(const MicroModelPlan& p) {
                                     : fmt::format("{} unit(s) of this model need ≈ {}", units,
                                                   format_bytes(need));
   throw InputError(fmt::format("{}: got {}; {} ({}), above the memory limit of {} ({}); expected "
-                               "a coarser unit, more ranks, or a larger --memory-limit",
+                               "a coarser unit, more ranks, a larger --memory-limit, or a smaller "
+                               "farm.factor_memory_budget",
                                p.size_key, size_value(p), who, p.memory.describe(),
                                format_bytes(limit.bytes), limit.origin));
 }
@@ -75,16 +76,19 @@ void check_unit_memory(const MicroModelPlan& plan, long long units, const Memory
 
 void check_unit_memory(const std::vector<PointModelSpec>& models,
                        const std::vector<std::vector<long long>>& units_on_rank,
-                       const MemoryLimit& limit) {
+                       const MemoryLimit& limit, double factor_budget) {
   for (size_t r = 0; r < units_on_rank.size(); ++r) {
-    double need = 0, worst = -1;
+    double need = 0, worst = -1, factors = 0;
     size_t worst_m = 0;
     for (size_t m = 0; m < models.size(); ++m) {
       if (!models[m].plan) continue;
       const double b = models[m].plan->memory.bytes_for(units_on_rank[r][m]);
       need += b;
+      factors += static_cast<double>(units_on_rank[r][m]) * models[m].plan->memory.factor_bytes;
       if (b > worst) worst = b, worst_m = m;
     }
+    // A budget below the rank's factors holds only the budget's worth of them.
+    if (factor_budget > 0 && factors > factor_budget) need -= factors - factor_budget;
     // Name the model that takes the most: its size key is what to change.
     if (need > limit.bytes)
       refuse(*models[worst_m].plan, units_on_rank[r][worst_m], need, static_cast<int>(r), limit);

@@ -24,9 +24,10 @@ MemoryLimit memory_limit(const std::string& text);
 /// Refuses (InputError, naming the model's size key, the estimate and the limit) when
 /// `units_on_rank[m]` units of each model m (with m's shared model) exceed the limit on
 /// some rank. `units_on_rank`: per rank, units per model index of spec.models.
+/// `factor_budget` > 0 (farm.factor_memory_budget): a rank's factors count at most that.
 void check_unit_memory(const std::vector<PointModelSpec>& models,
                        const std::vector<std::vector<long long>>& units_on_rank,
-                       const MemoryLimit& limit);
+                       const MemoryLimit& limit, double factor_budget = 0);
 
 /// One model with `units` units on one rank.
 void check_unit_memory(const MicroModelPlan& plan, long long units, const MemoryLimit& limit);
