@@ -353,8 +353,8 @@ int study(const StudyOptions& o) {
   write_file_atomically((fs::path(o.out) / "study.csv").string(), csv);
 
   // study.txt: the short table, also printed
-  std::string txt = fmt::format("study {} ({} ranks per variant); reference: {}\n", s.file, np,
-                                ref_problem.empty() ? ref_name : ref_problem);
+  std::string txt = fmt::format("study {} ({} rank{} per variant); reference: {}\n", s.file, np,
+                                np == 1 ? "" : "s", ref_problem.empty() ? ref_name : ref_problem);
   txt += fmt::format("error: max over {} of |q - q_ref| / max |q_ref|; * = Pareto front (CPU s, error)\n",
                      fmt::join(s.quantities, ", "));
   txt += fmt::format("{:<28} {:>7} {:>9} {:>9} {:>8} {:>7} {:>7} {:>9} {:>8} {:>10}\n", "variant", "status", "wall s",
