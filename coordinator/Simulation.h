@@ -51,6 +51,7 @@ struct StepRecord {
   int factor_evictions = 0;           ///< farm.factor_memory_budget: factors dropped ...
   int factor_rebuilds = 0;            ///< ... and rebuilt on a later job
   double factor_rebuild_cpu_seconds = 0.0;  ///< CPU of those rebuilds (in micro_cpu_seconds)
+  int forced_refreshes = 0;           ///< iterations whose units all refactored because Newton stalled
   double wall_seconds = 0.0;
   double micro_cpu_seconds = 0.0;
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
@@ -141,6 +142,8 @@ class Simulation {
     double cavity = 0.0;  ///< max_c |R_c| / V_c,ref (circulation-coupled cavities)
   };
   Residual converge(double t_new);
+  /// max over the residuals of each one's ratio to its tolerance: converged iff ≤ 1.
+  double convergence_measure(const Residual& r) const;
   void solve(int iteration);
   void update(bool first, const Eigen::VectorXd& du_D);
 
@@ -179,6 +182,9 @@ class Simulation {
   std::vector<PointResponse> responses_;
   double t_n_ = 0.0;
   std::vector<proto::JobInput> jobs_;
+  /// The next iteration's jobs refactor every unit whatever its policy: set when the
+  /// coupled Newton stopped contracting with kept factors (stale χ, stale A_hom).
+  bool force_refresh_ = false;
   std::vector<proto::JobOutput> results_;
   std::vector<double> values_;         ///< S̄ triplet values
   std::vector<double> du_;             ///< Newton correction on the free equations

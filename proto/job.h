@@ -49,6 +49,11 @@ inline bool refreshes_next(uint8_t next_refresh, int last_step, int last_iterati
   return false;
 }
 
+struct JobOutput;
+/// A unit's residual as convergence tests read it: ‖r‖ / r_ref, or 0 once ‖r‖ is at the
+/// round-off floor of its assembly (a tight micro_rtol on a high-contrast unit is then met).
+double relative_residual(const JobOutput& o);
+
 struct JobOutput {
   int32_t unit = -1;
   Mat9 A_hom = Mat9::Zero();  ///< Eq. (7): 𝔸_hom = Ā − Hχ
@@ -56,6 +61,7 @@ struct JobOutput {
   Vec9 P_bar = Vec9::Zero();  ///< ⟨Π⟩ at the assembled state (true stress, for the residual)
   double r_norm = 0.0;        ///< ‖r‖ of the micro out-of-balance force
   double r_ref = 1.0;         ///< its scale: converged when r_norm <= rtol * r_ref
+  double r_floor = 0.0;       ///< ‖r‖ of round-off: below it the unit cannot reduce r further
   int32_t gmres_iterations = 0;
   Refresh kind = Refresh::reuse;
   double cpu_seconds = 0.0;   ///< whole job, thread CPU time
@@ -73,5 +79,9 @@ struct JobOutput {
   uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)
   std::string message;        ///< why, when failed
 };
+
+inline double relative_residual(const JobOutput& o) {
+  return o.r_norm <= o.r_floor ? 0.0 : o.r_norm / o.r_ref;
+}
 
 }  // namespace fe2::proto

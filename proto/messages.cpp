@@ -92,6 +92,7 @@ void pack_result(ByteWriter& w, const JobOutput& o) {
   w.put_raw(o.P_bar.data(), 9 * sizeof(double));
   w.put(o.r_norm);
   w.put(o.r_ref);
+  w.put(o.r_floor);
   w.put(o.gmres_iterations);
   w.put(static_cast<uint8_t>(o.kind));
   w.put(o.cpu_seconds);
@@ -115,6 +116,7 @@ JobOutput unpack_result(ByteReader& r) {
   r.get_raw(o.P_bar.data(), 9 * sizeof(double));
   o.r_norm = r.get<double>();
   o.r_ref = r.get<double>();
+  o.r_floor = r.get<double>();
   o.gmres_iterations = r.get<int32_t>();
   const auto kind = r.get<uint8_t>();
   if (kind > 1) throw Error(fmt::format("{}: refresh kind {} out of range", r.what(), kind));

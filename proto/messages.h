@@ -16,7 +16,7 @@
 //            u64 m, m f64 det F per cell | u64 m, m f64 T_a per cell   (holder -> rank 0)
 //   JobInput  = i32 unit, step, iteration | f64 time, dt | u8 apply_update, force_refresh |
 //               9 f64 Z̄ | 9 f64 Ż̄ | f64 ∂Ż̄/∂Z̄ | f64 t_act             (kJobInputBytes)
-//   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref |
+//   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref, r_floor |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
 //               u8 next_refresh | u64 state_bytes | f64 T_a | i32 factor_evictions |
 //               u8 factor_rebuilt | u8 status | message string       (kJobOutputBytes + text)
@@ -43,7 +43,7 @@ const char* name_of(Type t);
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
 constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
-constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 2) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 1;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 3) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 1;
 constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 4 + 1 + 1;
 
 /// Reads and checks the header; throws fe2::Error naming both versions on mismatch.

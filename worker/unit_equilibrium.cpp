@@ -22,7 +22,7 @@ UnitEquilibrium equilibrate(MicroUnit& unit, const proto::JobInput& job, double 
     const proto::JobOutput out = unit.iterate(in);
     eq.gmres_iterations += out.gmres_iterations;
     eq.residuals.push_back(out.r_norm / out.r_ref);
-    if (out.r_norm <= rtol * out.r_ref) {
+    if (proto::relative_residual(out) <= rtol) {  // or at its round-off floor
       eq.newton_iterations = it;
       // Same state, fresh factor and modes: the exact homogenized tangent.
       in.apply_update = 0;

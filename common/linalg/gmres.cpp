@@ -6,7 +6,7 @@
 namespace fe2 {
 
 GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x, double tol,
-                  int restart, int max_iterations) {
+                  int restart, int max_iterations, const ResidualFloor& floor) {
   const Eigen::Index n = b.size();
   GmresResult res;
   Vec r(n), w(n);
@@ -14,7 +14,8 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
   r = b - w;
   double beta = r.norm();
   res.residual = beta;
-  if (beta <= tol) {
+  const auto met = [&] { return beta <= tol || (floor && beta <= floor(x)); };
+  if (met()) {
     res.converged = true;
     return res;
   }
@@ -71,7 +72,7 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
     beta = r.norm();
     res.residual = beta;
     if (!std::isfinite(beta)) return res;
-    if (beta <= tol) {
+    if (met()) {
       res.converged = true;
       return res;
     }

@@ -22,8 +22,13 @@ struct GmresResult {
   bool converged = false;
 };
 
-/// `x` is the initial guess on entry and the solution on exit.
+/// The residual norm round-off allows at x (e.g. eps·‖|A||x|‖): no Krylov method gets
+/// the true residual below it, so it is met when ‖b − Ax‖ is under it too.
+using ResidualFloor = std::function<double(const Vec& x)>;
+
+/// `x` is the initial guess on entry and the solution on exit. Converged when the true
+/// residual is ≤ tol, or ≤ floor(x) if a floor is given (checked at every restart).
 GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x, double tol,
-                  int restart, int max_iterations);
+                  int restart, int max_iterations, const ResidualFloor& floor = {});
 
 }  // namespace fe2
