@@ -3,7 +3,9 @@
 // iteration with the cached factor (assembly, Step 1 GMRES, Eqs. 7 and 9) when K is
 // the factored matrix, and when Z̄ has moved on by --stale-stretch and ten times that;
 // a refresh (numeric factorization plus the 9 characteristic-mode solves); and
-// CHOLMOD's own numeric factorization of the same matrix for comparison.
+// CHOLMOD's own numeric factorization of the same matrix for comparison. With
+// --single, the same figures for a second unit whose factor is MUMPS single precision
+// (and --blr-tolerance, block low-rank), under "single".
 #include "common/cpu_timer.h"
 #include "common/materials/NeoHookean.h"
 #include "tools/commands.h"
@@ -38,81 +40,109 @@ int bench_unit(const BenchOptions& o) {
   opt.refresh = MicroSolverOptions::Refresh::fixed;
   opt.N_t = 1 << 30;  // refreshes only when the benchmark asks
   opt.factorization = MicroSolverOptions::Factorization::cholesky;
-  auto model = std::make_shared<const MicroModel>(make_cell_mesh(layout), mats, opt, "bench");
-  MicroUnit unit(model);
-
   Vec9 Z0 = Vec9::Zero();
   Z0[0] = 0.05;  // 5 % fibre stretch
-  proto::JobInput job;
-  job.step = 1;       // not a refresh step of the fixed policy: refreshes only when forced
-  job.iteration = 2;
-  job.Zbar = Z0;
-  job.force_refresh = 1;
-  const double t_first = thread_cpu_seconds();
-  unit.iterate(job);  // symbolic analysis + first factorization
-  const double first_ms = 1e3 * (thread_cpu_seconds() - t_first);
 
-  std::vector<double> assembly, iteration, iteration_solve, refresh, factorize, gmres_its,
-      iteration_stale, gmres_stale, iteration_staler, gmres_staler;
-  MicroUnit::System sys;
-  sys.K = model->pattern();
-  auto cholmod = make_sparse_factor(FactorKind::cholesky);
-  cholmod->factorize(unit.system().K);  // its own analysis, excluded from the timing
-  for (int r = 0; r < o.repeat; ++r) {
-    double t = thread_cpu_seconds();
-    unit.assemble_at(unit.w(), Z0, sys);
-    assembly.push_back(1e3 * (thread_cpu_seconds() - t));
-
+  // Figures of one unit with these options; `cholmod` (when given) is refactored each
+  // repeat for comparison.
+  auto measure = [&](const MicroSolverOptions& uo, SparseFactor* cholmod_in,
+                     double* cholmod_ms) {
+    auto model = std::make_shared<const MicroModel>(make_cell_mesh(layout), mats, uo, "bench");
+    MicroUnit unit(model);
+    proto::JobInput job;
+    job.step = 1;       // not a refresh step of the fixed policy: refreshes only when forced
+    job.iteration = 2;
     job.Zbar = Z0;
     job.force_refresh = 1;
-    job.apply_update = 0;
-    refresh.push_back(1e3 * unit.iterate(job).cpu_refresh);
+    const double t_first = thread_cpu_seconds();
+    unit.iterate(job);  // symbolic analysis + first factorization
+    const double first_ms = 1e3 * (thread_cpu_seconds() - t_first);
 
-    // A Newton iteration whose K is the factored one: the floor (1 GMRES iteration).
-    job.force_refresh = 0;
-    const proto::JobOutput fresh = unit.iterate(job);
-    iteration.push_back(1e3 * fresh.cpu_seconds);
-    iteration_solve.push_back(1e3 * fresh.cpu_solve);
-    gmres_its.push_back(fresh.gmres_iterations);
-    // At a gradient the factor has not seen: +0.2 % stretch, about one load step of a
-    // beat resolved in a few hundred steps (paper §V: 400 steps per beat) ...
-    job.Zbar[0] = Z0[0] + o.stale_stretch;
-    const proto::JobOutput stale = unit.iterate(job);
-    iteration_stale.push_back(1e3 * stale.cpu_seconds);
-    gmres_stale.push_back(stale.gmres_iterations);
-    // ... and ten times staler, to show how the Krylov work grows.
-    job.Zbar[0] = Z0[0] + 10 * o.stale_stretch;
-    const proto::JobOutput staler = unit.iterate(job);
-    iteration_staler.push_back(1e3 * staler.cpu_seconds);
-    gmres_staler.push_back(staler.gmres_iterations);
+    std::vector<double> assembly, iteration, iteration_solve, refresh, factorize, gmres_its,
+        iteration_stale, gmres_stale, iteration_staler, gmres_staler;
+    MicroUnit::System sys;
+    sys.K = model->pattern();
+    SparseFactor* cholmod = cholmod_in;
+    if (cholmod) cholmod->factorize(unit.system().K);  // its own analysis, excluded from the timing
+    for (int r = 0; r < o.repeat; ++r) {
+      double t = thread_cpu_seconds();
+      unit.assemble_at(unit.w(), Z0, sys);
+      assembly.push_back(1e3 * (thread_cpu_seconds() - t));
 
-    // Last, so its 300 MB of factor traffic does not cool the unit's caches above.
-    t = thread_cpu_seconds();
-    cholmod->factorize(unit.system().K);
-    factorize.push_back(1e3 * (thread_cpu_seconds() - t));
+      job.Zbar = Z0;
+      job.force_refresh = 1;
+      job.apply_update = 0;
+      refresh.push_back(1e3 * unit.iterate(job).cpu_refresh);
+
+      // A Newton iteration whose K is the factored one: the floor (1 GMRES iteration
+      // with a double factor).
+      job.force_refresh = 0;
+      const proto::JobOutput fresh = unit.iterate(job);
+      iteration.push_back(1e3 * fresh.cpu_seconds);
+      iteration_solve.push_back(1e3 * fresh.cpu_solve);
+      gmres_its.push_back(fresh.gmres_iterations);
+      // At a gradient the factor has not seen: +0.2 % stretch, about one load step of a
+      // beat resolved in a few hundred steps (paper §V: 400 steps per beat) ...
+      job.Zbar[0] = Z0[0] + o.stale_stretch;
+      const proto::JobOutput stale = unit.iterate(job);
+      iteration_stale.push_back(1e3 * stale.cpu_seconds);
+      gmres_stale.push_back(stale.gmres_iterations);
+      // ... and ten times staler, to show how the Krylov work grows.
+      job.Zbar[0] = Z0[0] + 10 * o.stale_stretch;
+      const proto::JobOutput staler = unit.iterate(job);
+      iteration_staler.push_back(1e3 * staler.cpu_seconds);
+      gmres_staler.push_back(staler.gmres_iterations);
+
+      // Last, so its 300 MB of factor traffic does not cool the unit's caches above.
+      if (cholmod) {
+        t = thread_cpu_seconds();
+        cholmod->factorize(unit.system().K);
+        factorize.push_back(1e3 * (thread_cpu_seconds() - t));
+      }
+    }
+    if (cholmod) *cholmod_ms = median(factorize);
+    json j = {{"factor", unit.factor()->name()},
+              {"assembly_ms", median(assembly)},
+              {"iteration_ms", median(iteration)},
+              {"iteration_solve_ms", median(iteration_solve)},
+              {"iteration_gmres_iterations", median(gmres_its)},
+              {"iteration_stale_ms", median(iteration_stale)},
+              {"iteration_stale_gmres_iterations", median(gmres_stale)},
+              {"iteration_10x_staler_ms", median(iteration_staler)},
+              {"iteration_10x_staler_gmres_iterations", median(gmres_staler)},
+              {"refresh_ms", median(refresh)},
+              {"refresh_over_factorize", median(refresh) / *cholmod_ms},
+              {"first_refresh_with_analysis_ms", first_ms},
+              {"factor_MB", unit.factor()->factor_bytes() / 1e6},
+              {"factor_Gflop", unit.factor()->factor_flops() / 1e9},
+              {"dofs", model->num_dofs()},
+              {"elements", model->num_elements()}};
+    return j;
+  };
+
+  auto cholmod = make_sparse_factor(FactorKind::cholesky);
+  double cholmod_ms = 0;
+  json j = measure(opt, cholmod.get(), &cholmod_ms);
+  j["cholmod_factorize_ms"] = cholmod_ms;
+  if (o.single) {
+    MicroSolverOptions s = opt;
+    s.single_precision = true;
+    s.blr_tolerance = o.blr_tolerance;
+    json js = measure(s, nullptr, &cholmod_ms);
+    js.erase("dofs");
+    js.erase("elements");
+    js["refresh_over_double_refresh"] = js["refresh_ms"].get<double>() / j["refresh_ms"].get<double>();
+    js["factor_MB_over_double"] = js["factor_MB"].get<double>() / j["factor_MB"].get<double>();
+    js["blr_tolerance"] = o.blr_tolerance;
+    j["single"] = js;
   }
   const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
-  const json j = {{"dofs", model->num_dofs()},
-                  {"elements", model->num_elements()},
-                  {"resolution", n},
-                  {"cell", o.cell},
-                  {"repeat", o.repeat},
-                  {"assembly_ms", median(assembly)},
-                  {"iteration_ms", median(iteration)},
-                  {"iteration_solve_ms", median(iteration_solve)},
-                  {"iteration_gmres_iterations", median(gmres_its)},
-                  {"stale_stretch", o.stale_stretch},
-                  {"iteration_stale_ms", median(iteration_stale)},
-                  {"iteration_stale_gmres_iterations", median(gmres_stale)},
-                  {"iteration_10x_staler_ms", median(iteration_staler)},
-                  {"iteration_10x_staler_gmres_iterations", median(gmres_staler)},
-                  {"refresh_ms", median(refresh)},
-                  {"cholmod_factorize_ms", median(factorize)},
-                  {"refresh_over_factorize", median(refresh) / median(factorize)},
-                  {"first_refresh_with_analysis_ms", first_ms},
-                  {"factor_MB", unit.factor()->factor_bytes() / 1e6},
-                  {"OPENBLAS_NUM_THREADS", blas ? blas : "unset"},
-                  {"timer", "thread CPU time"}};
+  j["resolution"] = n;
+  j["cell"] = o.cell;
+  j["repeat"] = o.repeat;
+  j["stale_stretch"] = o.stale_stretch;
+  j["OPENBLAS_NUM_THREADS"] = blas ? blas : "unset";
+  j["timer"] = "thread CPU time";
   fmt::print("{}\n", j.dump(2));
   return 0;
 }

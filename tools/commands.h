@@ -29,6 +29,8 @@ struct BenchOptions {
   int repeat = 5;
   std::string cell = "two_cells";
   double stale_stretch = 0.002;  ///< how far Z̄ moves from the factored state
+  bool single = false;           ///< also time a unit with the single-precision MUMPS factor
+  double blr_tolerance = 0.0;    ///< its block low-rank threshold (0: full rank)
 };
 int bench_unit(const BenchOptions& o);
 

@@ -80,6 +80,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 0.2));
   c_bench_unit->add_option("--cell", bench.cell, "cell layout")
       ->check(CLI::IsMember({"two_cells", "homogeneous", "laminate"}));
+  c_bench_unit->add_flag("--single", bench.single,
+                         "also time a unit whose factor is MUMPS single precision");
+  c_bench_unit->add_option("--blr-tolerance", bench.blr_tolerance,
+                           "block low-rank threshold of that factor (0: full rank)")
+      ->check(CLI::Range(0.0, 0.5));
 
   auto* c_trace = app.add_subcommand("trace", "read a run's load-balance traces");
   c_trace->require_subcommand(1);

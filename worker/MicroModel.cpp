@@ -4,6 +4,7 @@
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/gmsh_reader.h"
+#include "worker/MumpsSingleFactor.h"
 #include "worker/micro_cell.h"
 
 #include <algorithm>
@@ -35,6 +36,17 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");
   o.gmres_max_iterations =
       s.integer("gmres_max_iterations", 500, Range::closed(1, 1e6), "GMRES iteration cap");
+  o.single_precision =
+      s.choice("precision", "double", {"double", "single"},
+               "precision of the factor of K (the GMRES preconditioner): double (CHOLMOD/"
+               "UMFPACK) or single (MUMPS, half the memory; residuals and answer stay "
+               "double)") == "single";
+  o.blr_tolerance = s.number("blr_tolerance", 0.0, Range{0.0, 1.0, false, true},
+                             "block low-rank threshold of the single-precision MUMPS factor "
+                             "(CNTL(7)); 0 = full rank");
+  if (o.blr_tolerance > 0 && !o.single_precision)
+    s.fail("blr_tolerance", "0 unless \"precision\" is \"single\" (block low-rank is a MUMPS "
+                            "single-precision option)");
   s.finish();
   return o;
 }
@@ -110,7 +122,7 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
   const bool lu = plan.options.factorization == MicroSolverOptions::Factorization::lu ||
                   (plan.options.factorization == MicroSolverOptions::Factorization::automatic &&
                    !symmetric);
-  plan.memory = estimate_micro_memory(cells, nodes, elements, lu);
+  plan.memory = estimate_micro_memory(cells, nodes, elements, lu, plan.options.single_precision);
   return plan;
 }
 
@@ -242,6 +254,12 @@ FactorKind MicroModel::initial_factor_kind() const {
     case MicroSolverOptions::Factorization::lu: return FactorKind::lu;
     default: return symmetric_ ? FactorKind::cholesky : FactorKind::lu;
   }
+}
+
+std::unique_ptr<SparseFactor> MicroModel::make_factor(FactorKind kind) const {
+  if (options_.single_precision)
+    return make_mumps_single_factor(kind == FactorKind::cholesky, options_.blr_tolerance);
+  return make_sparse_factor(kind);
 }
 
 }  // namespace fe2

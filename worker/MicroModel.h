@@ -32,6 +32,10 @@ struct MicroSolverOptions {
   double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
+  /// The factor in single precision (MUMPS smumps), used only as the GMRES
+  /// preconditioner: the answer stays double, the factor costs half the memory.
+  bool single_precision = false;
+  double blr_tolerance = 0.0;  ///< single precision only: block low-rank threshold, 0 = off
 
   /// Reads /.../solver; every key optional.
   static MicroSolverOptions from_spec(SpecNode node);
@@ -94,6 +98,8 @@ class MicroModel {
   double stress_floor() const { return stress_floor_; }
   /// Which factorization a fresh unit starts with.
   FactorKind initial_factor_kind() const;
+  /// An empty factor of that kind in the precision the options ask for.
+  std::unique_ptr<SparseFactor> make_factor(FactorKind kind) const;
   /// Content hash of mesh, materials layout and options (checks deserialized state).
   uint64_t fingerprint() const { return fingerprint_; }
   /// Whether element e's law reads its point context (Material::uses_context).

@@ -159,7 +159,7 @@ void MicroUnit::rebuild_factor() {
   // then bit for bit the same as if the unit had never moved.
   SparseMatrix K = model_->pattern();
   std::copy(K_factored_.begin(), K_factored_.end(), K.valuePtr());
-  factor_ = make_sparse_factor(factor_kind_);
+  factor_ = model_->make_factor(factor_kind_);
   factor_->factorize(K);
 }
 
@@ -171,7 +171,7 @@ void MicroUnit::refresh() {
   // (c1) factor K; LLᵀ falls back to LU under the automatic policy when K stops
   // being positive definite.
   K_factored_.assign(sys_.K.valuePtr(), sys_.K.valuePtr() + sys_.K.nonZeros());
-  if (!factor_) factor_ = make_sparse_factor(factor_kind_);
+  if (!factor_) factor_ = model_->make_factor(factor_kind_);
   try {
     factor_->factorize(sys_.K);
   } catch (const NumericalError&) {
@@ -179,7 +179,7 @@ void MicroUnit::refresh() {
         model_->options().factorization != MicroSolverOptions::Factorization::automatic)
       throw;
     factor_kind_ = FactorKind::lu;
-    factor_ = make_sparse_factor(factor_kind_);
+    factor_ = model_->make_factor(factor_kind_);
     factor_->factorize(sys_.K);
   }
   // (c3) Eq. (6): χ = K⁻¹ G. The factor is exact for K unless LLᵀ was forced on an

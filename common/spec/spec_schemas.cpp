@@ -124,7 +124,16 @@ Schema micro_unit() {
                     {"gmres_rtol", number(1e-10, kOpenUnit, "Step 1 relative residual tolerance")},
                     {"gmres_restart", integer(50, Range::closed(1, 1000), "GMRES restart length")},
                     {"gmres_max_iterations",
-                     integer(500, Range::closed(1, 1e6), "GMRES iteration cap")}})}},
+                     integer(500, Range::closed(1, 1e6), "GMRES iteration cap")},
+                    {"precision",
+                     choice("double", {"double", "single"},
+                            "precision of the factor of K (the GMRES preconditioner): double "
+                            "(CHOLMOD/UMFPACK) or single (MUMPS, half the memory; residuals and "
+                            "answer stay double)")},
+                    {"blr_tolerance",
+                     number(0.0, Range{0.0, 1.0, false, true},
+                            "block low-rank threshold of the single-precision MUMPS factor "
+                            "(CNTL(7)); 0 = full rank")}})}},
           "cell",
           {{"two_cells",
             {{"size", cell_size()},

@@ -1,0 +1,149 @@
+// The single-precision MUMPS factor as the unit's GMRES preconditioner (issue #11, the
+// cost side): the answer stays the double-factor answer to the GMRES tolerance, the
+// float factor is really used (it costs GMRES iterations), and its spec keys are checked.
+#include "common/error.h"
+#include "unit_fixtures.h"
+#include "worker/MicroModel.h"
+#include "worker/MumpsSingleFactor.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace fe2 {
+namespace {
+
+using test::gradient;
+using test::rel_diff;
+
+struct UnitRun {
+  std::vector<proto::JobOutput> out;
+  int gmres = 0;
+  std::string factor;
+};
+
+// Newton iterations of one unit at two load levels: a refresh at iteration 1 of step 0
+// (factor exact for K), then steps on that factor (stale K) with the update applied.
+UnitRun run(MicroSolverOptions opt) {
+  opt.refresh = MicroSolverOptions::Refresh::fixed;
+  opt.N_t = 100;
+  opt.gmres_rtol = 1e-12;
+  MicroUnit unit(test::two_cell_model(opt));
+  const Vec9 Z = gradient({0.04, 0.01, 0.0, 0.0, -0.015, 0.0, 0.01, 0.0, 0.005});
+  UnitRun r;
+  for (int step = 0; step < 2; ++step)
+    for (int it = 1; it <= 4; ++it) {
+      proto::JobInput in;
+      in.step = step;
+      in.iteration = it;
+      in.apply_update = it > 1 || step > 0;
+      in.Zbar = (1.0 + step) * Z;
+      r.out.push_back(unit.iterate(in));
+      r.gmres += r.out.back().gmres_iterations;
+    }
+  r.factor = unit.factor()->name();
+  return r;
+}
+
+void expect_same_answer(const UnitRun& a, const UnitRun& b) {
+  ASSERT_EQ(a.out.size(), b.out.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.out.size(); ++i)
+    worst = std::max({worst, rel_diff(a.out[i].P_bar, b.out[i].P_bar),
+                      rel_diff(a.out[i].A_hom, b.out[i].A_hom)});
+  fmt::print("{}: {} GMRES iterations ({} with {}), largest relative difference {:.2e}\n",
+             a.factor, a.gmres, b.gmres, b.factor, worst);
+  for (size_t i = 0; i < a.out.size(); ++i) {
+    SCOPED_TRACE(fmt::format("job {}", i));
+    EXPECT_LT(rel_diff(a.out[i].P_bar, b.out[i].P_bar), 1e-9);
+    EXPECT_LT(rel_diff(a.out[i].A_hom, b.out[i].A_hom), 1e-9);
+  }
+}
+
+TEST(SinglePrecisionFactor, SameHomogenizedAnswerAsDoubleFactor) {
+  const UnitRun dbl = run({});
+  MicroSolverOptions o;
+  o.single_precision = true;
+  const UnitRun sgl = run(o);
+  EXPECT_EQ(dbl.factor, "cholmod_llt");
+  EXPECT_EQ(sgl.factor, "mumps_single_ldlt");
+  // The float factor is really the preconditioner: it costs GMRES iterations, even
+  // right after the refresh, where the double factor solves Step 1 in one.
+  EXPECT_GT(sgl.gmres, dbl.gmres);
+  EXPECT_EQ(dbl.out[0].gmres_iterations, 1);
+  EXPECT_GT(sgl.out[0].gmres_iterations, 1);
+  expect_same_answer(sgl, dbl);
+  // Unsymmetric (LU) path as well.
+  o.factorization = MicroSolverOptions::Factorization::lu;
+  const UnitRun lu = run(o);
+  EXPECT_EQ(lu.factor, "mumps_single_lu");
+  EXPECT_GT(lu.gmres, dbl.gmres);
+  expect_same_answer(lu, dbl);
+}
+
+TEST(SinglePrecisionFactor, BlockLowRankGivesTheSameAnswer) {
+  const UnitRun dbl = run({});
+  MicroSolverOptions o;
+  o.single_precision = true;
+  o.blr_tolerance = 1e-4;
+  const UnitRun blr = run(o);
+  EXPECT_EQ(blr.factor, "mumps_single_ldlt_blr");
+  EXPECT_GT(blr.gmres, dbl.gmres);
+  expect_same_answer(blr, dbl);
+}
+
+TEST(SinglePrecisionFactor, SolveIsAccurateToSinglePrecisionAndReportsCosts) {
+  MicroUnit unit(test::two_cell_model());
+  proto::JobInput in;
+  in.Zbar = gradient({0.05, 0.01, 0, 0, -0.02, 0, 0, 0, 0.01});
+  unit.iterate(in);
+  const SparseMatrix& K = unit.system().K;
+  const Eigen::MatrixXd& G = unit.system().G;
+  auto f = make_mumps_single_factor(true, 0.0);
+  f->factorize(K);
+  Eigen::MatrixXd X(G.rows(), 9);
+  f->solve(G.data(), X.data(), 9);
+  const double rel = (K * X - G).norm() / G.norm();
+  EXPECT_LT(rel, 1e-3);   // a float factor: far from double round-off ...
+  EXPECT_GT(rel, 1e-12);  // ... and not a double solve in disguise
+  EXPECT_GT(f->factor_flops(), 0.0);
+  EXPECT_GT(f->solve_flops(), 0.0);
+  EXPECT_GT(f->factor_bytes(), 0.0);
+}
+
+MicroModelPlan plan_with(const nlohmann::json& solver) {
+  nlohmann::json spec = nlohmann::json::parse(R"({
+      "cell": "homogeneous", "resolution": [2, 2, 2],
+      "materials": {"matrix": {"model": "neo_hookean", "E": 10, "nu": 0.3}}})");
+  spec["solver"] = solver;
+  return MicroModel::plan(SpecNode(spec, "/unit"), ".");
+}
+
+std::string refusal(const nlohmann::json& solver) {
+  try {
+    plan_with(solver);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(SinglePrecisionFactor, SpecKeysAreReadAndBadValuesRefused) {
+  const MicroModelPlan p = plan_with({{"precision", "single"}, {"blr_tolerance", 1e-6}});
+  EXPECT_TRUE(p.options.single_precision);
+  EXPECT_EQ(p.options.blr_tolerance, 1e-6);
+  // The memory estimate counts the float factor at half the double one's bytes.
+  const MicroModelPlan d = plan_with(nlohmann::json::object());
+  EXPECT_NEAR(p.memory.factor_bytes, 0.5 * d.memory.factor_bytes, 1e-9 * d.memory.factor_bytes);
+
+  std::string e = refusal({{"precision", "half"}});
+  EXPECT_NE(e.find("/unit/solver/precision"), std::string::npos) << e;
+  EXPECT_NE(e.find("half"), std::string::npos) << e;
+  e = refusal({{"precision", "single"}, {"blr_tolerance", 1.5}});
+  EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
+  e = refusal({{"blr_tolerance", 1e-6}});
+  EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"precision\" is \"single\""), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace fe2
