@@ -10,7 +10,7 @@ cd "$top"
 
 packages=(build-essential cmake pkg-config openmpi-bin libopenmpi-dev libeigen3-dev
           libsuitesparse-dev libopenblas-dev libmumps-dev libmetis-dev libspdlog-dev nlohmann-json3-dev
-          libcli11-dev libgtest-dev python3-matplotlib python3-jsonschema python3-meshio python3-gmsh)
+          libcli11-dev libgtest-dev python3-matplotlib python3-jsonschema python3-meshio python3-gmsh clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

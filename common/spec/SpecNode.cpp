@@ -328,6 +328,28 @@ class JsonPathTracker {
 
 }  // namespace
 
+namespace {
+
+// The one parse of spec text (files and the fuzz target tests/fuzz/fuzz_spec.cpp).
+template <class Parse>
+json parse_spec(const std::string& file, Parse&& parse) {
+  JsonPathTracker where(file);
+  try {
+    return parse(std::ref(where));
+  } catch (const json::parse_error& e) {
+    throw InputError(fmt::format("spec file '{}' is not valid JSON: {}", file, e.what()));
+  } catch (const json::exception& e) {  // e.g. out_of_range 406: a number such as 1e999
+    throw InputError(fmt::format("spec file '{}' at {}: {}, expected a finite JSON value", file,
+                                 where.pointer(), e.what()));
+  }
+}
+
+}  // namespace
+
+json parse_json_text(std::string_view text, const std::string& file) {
+  return parse_spec(file, [&](auto cb) { return json::parse(text.begin(), text.end(), cb); });
+}
+
 json read_json_file(const std::string& file) {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
@@ -335,15 +357,7 @@ json read_json_file(const std::string& file) {
   std::ifstream in(file);
   if (!in)
     throw InputError(fmt::format("cannot open spec file '{}' ({})", file, std::strerror(errno)));
-  JsonPathTracker where(file);
-  try {
-    return json::parse(in, std::ref(where));
-  } catch (const json::parse_error& e) {
-    throw InputError(fmt::format("spec file '{}' is not valid JSON: {}", file, e.what()));
-  } catch (const json::exception& e) {  // e.g. out_of_range 406: a number such as 1e999
-    throw InputError(fmt::format("spec file '{}' at {}: {}, expected a finite JSON value", file,
-                                 where.pointer(), e.what()));
-  }
+  return parse_spec(file, [&](auto cb) { return json::parse(in, cb); });
 }
 
 }  // namespace fe2

@@ -20,6 +20,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fe2 {
@@ -107,6 +108,9 @@ class SpecNode {
 
 /// Reads a JSON file; a missing or malformed file is an InputError naming it.
 json read_json_file(const std::string& file);
+/// Parses spec text as read_json_file does (duplicate keys, depth, overflow are
+/// InputErrors naming `file`).
+json parse_json_text(std::string_view text, const std::string& file);
 
 /// Closest candidate by edit distance, or "" when nothing is close.
 std::string closest_match(const std::string& word, const std::vector<std::string>& candidates);
