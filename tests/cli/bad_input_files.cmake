@@ -25,6 +25,10 @@ fe2_cli_test(cli.validate.memory_limit_1G 0 "fe2_beam[.]json: OK: .*unit memory 
 fe2_cli_test(cli.bad_input.memory_limit_syntax 2
              "--memory-limit: got '12Q', expected a positive size in bytes, optionally with a suffix k, M, G or T"
              ARGS validate --memory-limit 12Q ${FE2_CLI_BAD}/small_valid.json)
+# Found by fuzz_spec (tests/fuzz): a size whose scaled value overflows was +inf bytes.
+fe2_cli_test(cli.bad_input.memory_limit_overflow 2
+             "--memory-limit: got '1e308T', expected a positive size in bytes"
+             ARGS validate --memory-limit 1e308T ${FE2_CLI_BAD}/small_valid.json)
 # farm.factor_memory_budget (issue #11): a budget below one unit's factor (by the memory
 # estimate) is refused naming the key, the value and the smallest useful budget, before
 # anything runs; a text that is no size names the key and the text.
