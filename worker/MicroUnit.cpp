@@ -4,6 +4,7 @@
 #include "common/error.h"
 #include "worker/micro_kernel.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -113,21 +114,32 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
     }
     hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c, context);
     const int* pos = m.scatter(e);
+    const bool pinned = std::any_of(eq.begin(), eq.end(), [](int g) { return g < 0; });
+    double* Hv = sys.H.data();
     for (int l = 0; l < 24; ++l) {
       const int gl = eq[l];
       if (gl < 0) continue;
       sys.r[gl] += c.r[l];
-      sys.H.col(gl) += c.H.col(l);
+      for (int j = 0; j < 9; ++j) Hv[9 * static_cast<size_t>(gl) + j] += c.H(j, l);
       if (need_G) Gt.col(gl) += c.G.row(l).transpose();
+      // K(l, k) at pos[24l + k]; only the 8 elements at the pinned node test for -1.
       const int* row = pos + 24 * l;
-      for (int k = 0; k < 24; ++k)
-        if (row[k] >= 0) Kv[row[k]] += c.K(l, k);
+      if (pinned) {
+        for (int k = 0; k < 24; ++k)
+          if (row[k] >= 0) Kv[row[k]] += c.K(l, k);
+      } else {
+        for (int k = 0; k < 24; ++k) Kv[row[k]] += c.K(l, k);
+      }
     }
     sys.Abar += c.Abar;
     sys.Pbar += c.Pbar;
     if (element_P) (*element_P)[e] = c.Pbar;
   }
-  sys.G = need_G ? Eigen::MatrixXd(Gt.transpose()) : Eigen::MatrixXd(sys.H.transpose());
+  // Into the existing storage: a fresh n×9 array per assembly costs page faults.
+  if (need_G)
+    sys.G = Gt.transpose();
+  else
+    sys.G = sys.H.transpose();
 }
 
 bool MicroUnit::refresh_due(const proto::JobInput& in) const {
@@ -211,9 +223,15 @@ void MicroUnit::refresh() {
 
 Vec MicroUnit::abs_K_times(const Vec& v) const {
   const SparseMatrix& K = sys_.K;
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* value = K.valuePtr();
   Vec y = Vec::Zero(K.rows());
-  for (int k = 0; k < K.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(K, k); it; ++it) y[it.row()] += std::abs(it.value()) * std::abs(v[it.col()]);
+  for (Eigen::Index c = 0; c < K.outerSize(); ++c) {
+    const double vc = std::abs(v[c]);
+    if (vc == 0.0) continue;  // Step 1 starts from x = 0: its floor costs nothing
+    for (int k = outer[c]; k < outer[c + 1]; ++k) y[inner[k]] += std::abs(value[k]) * vc;
+  }
   return y;
 }
 

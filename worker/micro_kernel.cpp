@@ -13,7 +13,6 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
                            const HexPointContext* point) {
   out.K.setZero();
   out.r.setZero();
-  out.H.setZero();
   if (need_G) out.G.setZero();
   out.Abar.setZero();
   out.Pbar.setZero();
@@ -21,15 +20,27 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
   Vec9 Pi;                              // Π at the Gauss point
   Mat9 A;                               // 𝔸 at the Gauss point (toward w)
   Mat9 A_rate, A_Zbar;                  // ∂Π/∂Ż and 𝔸 toward Z̄ (rate-dependent laws)
-  Mat9 Ap;                              // ω𝔸 with rows and columns reordered (i,J) -> 3i+J
-  Eigen::Matrix<double, 9, 24> M;       // ω(𝔸 B̃) with rows in 3i+J order
-  Eigen::Matrix<double, 8, 3> R;        // ∇Nᵀ Πᵀ: r_e(8i+a) = R(a,i)
+  // Every update below is an 8-vector (over the node index a or b) times at most 3
+  // coefficients: fixed-size, vectorized, no packing. Eigen's products of the 24-wide
+  // shapes went through its general GEMM (packing per call): 40 % of an assembly.
+  using Vec8 = Eigen::Matrix<double, 8, 1>;
+  Eigen::Matrix<double, 8, 3> gt;       // gt(a, J) = ∂N_a/∂X_J at the Gauss point
+  alignas(64) double Mt[3][9][8];       // Mt[k][3i+J][b] = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L  (ω𝔸B̃)
+  double* K = out.K.data();             // K(8i+a, 8k+b) at (8k+b)·24 + 8i + a
+  alignas(64) double Hsum[3][9][8] = {};  // Hsum[k][3i+J][b] = H(iJ, 8k+b)
   for (int q = 0; q < 8; ++q) {
     const Eigen::Matrix<double, 3, 8>& g = geo.grad[q];  // g(J,a) = ∂N_a/∂X_J
     const double omega = geo.weight[q] * inv_volume;
+    gt = g.transpose();
 
     // Z = Z̄ + B̃w: Z_iJ = Z̄_iJ + Σ_a w_ai ∂N_a/∂X_J
-    Mat3 Z = as_mat3(Zbar) + w_e * g.transpose();
+    Vec9 Zq;
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) {
+        double z = Zbar[index9(i, J)];
+        for (int a = 0; a < 8; ++a) z += w_e(i, a) * gt(a, J);
+        Zq[index9(i, J)] = z;
+      }
     // 𝔸 toward w (K, H) and toward Z̄ (G, Ā): equal unless Π depends on Ż, whose
     // coefficients differ, ∂Ż/∂w = B̃/Δt (backward Euler) and ∂Ż/∂Z̄ = c of the macro
     // integrator: 𝔸_w = A + A_rate/Δt, 𝔸_Z̄ = A + c·A_rate.
@@ -42,51 +53,61 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
       PointHistory history;
       if (h > 0)
         history = {{point->history_committed + q * h, h}, {point->history + q * h, h}};
-      material.stress_and_tangent_at(as_vec9(Z), context, history, Pi, A, A_rate);
+      material.stress_and_tangent_at(Zq, context, history, Pi, A, A_rate);
       if (material.rate_dependent()) {
         A_Zbar.noalias() = A + point->Zbar_dot_coefficient * A_rate;
         if (point->dt > 0.0) A.noalias() += (1.0 / point->dt) * A_rate;
         A_toward_Zbar = &A_Zbar;
       }
     } else {
-      material.stress_and_tangent(as_vec9(Z), Pi, A);
+      material.stress_and_tangent(Zq, Pi, A);
     }
 
-    for (int i = 0; i < 3; ++i)
-      for (int J = 0; J < 3; ++J)
-        for (int k = 0; k < 3; ++k)
-          for (int L = 0; L < 3; ++L)
-            Ap(3 * i + J, 3 * k + L) = omega * A(i + 3 * J, k + 3 * L);
-
-    // M(3i+J, 8k+b) = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
-    for (int k = 0; k < 3; ++k) M.middleCols<8>(8 * k).noalias() = Ap.middleCols<3>(3 * k) * g;
-    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J M(3i+J, 8k+b). With major symmetry K is
-    // symmetric: only the blocks k >= i are computed here, the rest mirrored below.
-    if (need_G) {
+    // Mt[k][3i+J][b] = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
+    for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i)
-        out.K.middleRows<8>(8 * i).noalias() += g.transpose() * M.middleRows<3>(3 * i);
-    } else {
-      out.K.block<8, 24>(0, 0).noalias() += g.transpose() * M.block<3, 24>(0, 0);
-      out.K.block<8, 16>(8, 8).noalias() += g.transpose() * M.block<3, 16>(3, 8);
-      out.K.block<8, 8>(16, 16).noalias() += g.transpose() * M.block<3, 8>(6, 16);
-    }
-    // H(iJ, ·) += M(3i+J, ·)
-    for (int i = 0; i < 3; ++i)
-      for (int J = 0; J < 3; ++J) out.H.row(i + 3 * J) += M.row(3 * i + J);
+        for (int J = 0; J < 3; ++J) {
+          const Eigen::Vector3d c(omega * A(index9(i, J), index9(k, 0)),
+                                  omega * A(index9(i, J), index9(k, 1)),
+                                  omega * A(index9(i, J), index9(k, 2)));
+          Eigen::Map<Vec8>(Mt[k][3 * i + J]).noalias() = gt.lazyProduct(c);
+        }
+    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J Mt[k][3i+J][b]. With major symmetry K is
+    // symmetric: only the blocks k >= i are computed here, the rest mirrored below.
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < (need_G ? 3 : k + 1); ++i)
+        for (int b = 0; b < 8; ++b) {
+          const Eigen::Vector3d m(Mt[k][3 * i][b], Mt[k][3 * i + 1][b], Mt[k][3 * i + 2][b]);
+          Eigen::Map<Vec8>(K + (8 * k + b) * 24 + 8 * i).noalias() += gt.lazyProduct(m);
+        }
+    // H(iJ, 8k+b) = Σ_q Mt[k][3i+J][b], summed in Mt's layout and transposed once below
+    for (int k = 0; k < 3; ++k)
+      for (int iJ = 0; iJ < 9; ++iJ)
+        Eigen::Map<Vec8>(Hsum[k][iJ]) += Eigen::Map<const Vec8>(Mt[k][iJ]);
     if (need_G) {
       // G(8i+a, m) += ω Σ_J ∂N_a/∂X_J 𝔸(iJ, m)
-      for (int i = 0; i < 3; ++i) {
-        Eigen::Matrix<double, 3, 9> rows;
-        for (int J = 0; J < 3; ++J) rows.row(J) = omega * A_toward_Zbar->row(i + 3 * J);
-        out.G.middleRows<8>(8 * i).noalias() += g.transpose() * rows;
-      }
+      double* G = out.G.data();  // G(8i+a, m) at 24m + 8i + a
+      for (int m = 0; m < 9; ++m)
+        for (int i = 0; i < 3; ++i) {
+          const Eigen::Vector3d c(omega * (*A_toward_Zbar)(index9(i, 0), m),
+                                  omega * (*A_toward_Zbar)(index9(i, 1), m),
+                                  omega * (*A_toward_Zbar)(index9(i, 2), m));
+          Eigen::Map<Vec8>(G + 24 * m + 8 * i).noalias() += gt.lazyProduct(c);
+        }
     }
-    const Mat3 P = as_mat3(Pi);
-    R.noalias() = g.transpose() * P.transpose();
-    for (int i = 0; i < 3; ++i) out.r.segment<8>(8 * i) += omega * R.col(i);
+    // r(8i+a) += ω Σ_J ∂N_a/∂X_J Π_iJ
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d p(omega * Pi[index9(i, 0)], omega * Pi[index9(i, 1)],
+                              omega * Pi[index9(i, 2)]);
+      out.r.segment<8>(8 * i).noalias() += gt.lazyProduct(p);
+    }
     out.Abar += omega * *A_toward_Zbar;
     out.Pbar += omega * Pi;
   }
+  for (int k = 0; k < 3; ++k)
+    for (int b = 0; b < 8; ++b)
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J) out.H(index9(i, J), 8 * k + b) = Hsum[k][3 * i + J][b];
   if (!need_G)
     for (int i = 0; i < 3; ++i)
       for (int k = i + 1; k < 3; ++k)

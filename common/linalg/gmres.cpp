@@ -10,7 +10,10 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
   const Eigen::Index n = b.size();
   GmresResult res;
   Vec r(n), w(n);
-  A(x, w);
+  if (x.isZero(0.0))  // the usual start: A·0 = 0 without an operator application
+    w.setZero();
+  else
+    A(x, w);
   r = b - w;
   double beta = r.norm();
   res.residual = beta;
