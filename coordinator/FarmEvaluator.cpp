@@ -12,6 +12,11 @@
 
 namespace fe2 {
 
+namespace {
+/// Local points evaluated between two polls of the job server (each a few µs).
+constexpr int kLocalPointsPerPoll = 32;
+}  // namespace
+
 FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& coordinators,
                              const FarmLayout& layout, const RunSpec& spec, UnitStore* store,
                              Trace* trace)
@@ -23,8 +28,18 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
       trace_(trace),
       server_(transport),
       placement_(layout.initial_worker_of_unit),
+      farm_units_(layout.farm_units()),
       t0_(wall_seconds()) {
   if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
+  const std::vector<int> model = spec.model_of_points();
+  macro_law_.resize(model.size());
+  std::vector<int> here;
+  for (size_t u = 0; u < model.size(); ++u) {
+    macro_law_[u] = spec.models[model[u]].kind == PointModelSpec::Kind::macro_law;
+    if (layout.is_local(static_cast<int>(u)) && layout.coordinator_of_unit[u] == transport_.rank())
+      here.push_back(static_cast<int>(u));
+  }
+  local_.emplace(spec.models, model, here);
   if (coords_.rank() == 0) {
     costs_.emplace(placement_.size());
     last_cost_.resize(placement_.size());
@@ -46,23 +61,30 @@ bool FarmEvaluator::next_job_refreshes(int unit, int step, int iteration) const 
 }
 
 void FarmEvaluator::rebalance(int step, int iteration) {
+  if (farm_units_.empty()) return;  // every point is evaluated where it lives
   Bytes plan_bytes;
   if (coords_.rank() == 0) {
     // Cost model: each unit's next job costs what its last job of the same kind did.
+    // Only units that travel are planned (local points are no movable work).
     const int nw = static_cast<int>(layout_.worker_ranks.size());
     std::vector<int> index_of_rank(layout_.ranks, -1);
     for (int i = 0; i < nw; ++i) index_of_rank[layout_.worker_ranks[i]] = i;
-    const std::vector<UnitCost> cost =
-        costs_->predict([&](int u) { return next_job_refreshes(u, step, iteration); });
-    std::vector<int> where(placement_.size());
-    for (size_t u = 0; u < where.size(); ++u) where[u] = index_of_rank[placement_[u]];
+    std::vector<UnitCost> cost(farm_units_.size());
+    std::vector<int> where(farm_units_.size());
+    for (size_t i = 0; i < farm_units_.size(); ++i) {
+      const int u = farm_units_[i];
+      cost[i] = costs_->predict_one(u, next_job_refreshes(u, step, iteration));
+      where[i] = index_of_rank[placement_[u]];
+    }
     const Plan plan = plan_rebalance(cost, where, nw, spec_.farm);
     proto::Control c;
     c.command = proto::Command::rebalance;
     c.step = step;
     c.iteration = iteration;
-    for (const auto& [u, w] : plan.moves)
+    for (const auto& [i, w] : plan.moves) {
+      const int u = farm_units_[i];
       c.moves.push_back({u, placement_[u], layout_.worker_ranks[w]});
+    }
     if (!c.moves.empty())
       spdlog::debug("rebalance: {} moves, predicted makespan {:.4g} s -> {:.4g} s",
                     c.moves.size(), plan.makespan_before, plan.makespan_after);
@@ -103,18 +125,30 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   go.dt = jobs.front().dt;
   send_to_pure_workers(go);
   const double t_start = wall_seconds();
-  std::vector<int> worker_of_job(jobs.size());
-  for (size_t k = 0; k < jobs.size(); ++k) worker_of_job[k] = placement_[jobs[k].unit];
-  server_.begin(jobs, worker_of_job, spec_.farm.batch);
+  // The jobs of local points stay here; the others are queued for their workers.
+  std::vector<proto::JobInput> farm_jobs;
+  std::vector<size_t> farm_index;
+  local_->begin(jobs, farm_jobs, farm_index);
+  for (const auto& j : farm_jobs) last_.macro_law_jobs_sent += macro_law_[j.unit];
+  std::vector<int> worker_of_job(farm_jobs.size());
+  for (size_t k = 0; k < farm_jobs.size(); ++k) worker_of_job[k] = placement_[farm_jobs[k].unit];
+  server_.begin(farm_jobs, worker_of_job, spec_.farm.batch);
   if (client_) client_->begin(coordinators_of(*store_, layout_.coordinator_of_unit), step, iteration);
 
   // (b)–(f) serve pulls and work, until all of this coordinator's results are in and
-  // this rank's own units are done.
+  // this rank's own units and local points are done.
   auto client_done = [&] { return !client_ || client_->finished(); };
   double last_progress = wall_seconds();
-  while (!(server_.finished() && client_done())) {
+  while (!(server_.finished() && client_done() && local_->finished())) {
     const long long before = server_.served() + (client_ ? client_->progress() : 0);
     if (!server_.finished()) server_.poll(false);
+    if (!local_->finished()) {
+      // A few local points between two polls: a waiting worker is served within
+      // microseconds.
+      local_->run(kLocalPointsPerPoll);
+      last_progress = wall_seconds();
+      continue;
+    }
     if (!client_done()) client_->poll(false);
     if (server_.served() + (client_ ? client_->progress() : 0) != before) {
       last_progress = wall_seconds();
@@ -133,11 +167,14 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
       std::this_thread::sleep_for(std::chrono::microseconds(20));
     }
   }
-  out = server_.results();
+  out.assign(jobs.size(), proto::JobOutput{});
+  const std::vector<proto::JobOutput>& farm_out = server_.results();
+  for (size_t i = 0; i < farm_out.size(); ++i) out[farm_index[i]] = farm_out[i];
+  local_->results(out);
   const double micro_phase = wall_seconds() - t_start;
   last_.comm1 = server_.comm1_seconds();
   last_.comm2 = server_.comm2_seconds();
-  collect_accounts(out, step, iteration, micro_phase, t_start);
+  collect_accounts(farm_out, step, iteration, micro_phase, t_start);
 }
 
 void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, int step,
@@ -166,7 +203,16 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       if (trace_) trace_->worker(s, micro_phase, t0_);
     }
   }
-  // Per-unit costs to rank 0 (the cost model and the unit trace), as a small message.
+  // Local points, summed over the coordinators (traces): jobs and CPU evaluated in
+  // place, and jobs of macro-law points sent through the farm.
+  double local[3] = {static_cast<double>(local_->jobs()), local_->cpu_seconds(),
+                     static_cast<double>(last_.macro_law_jobs_sent)};
+  coords_.reduce_sum(local, 3, 0);
+  last_.local_jobs = static_cast<long long>(local[0]);
+  last_.local_cpu = local[1];
+  last_.macro_law_jobs_sent = static_cast<long long>(local[2]);
+  // Per-unit costs of the farm's jobs to rank 0 (the cost model and the unit trace), as
+  // a small message.
   proto::CostReport mine;
   mine.step = step;
   mine.iteration = iteration;
@@ -198,6 +244,7 @@ void FarmEvaluator::commit_step() {
   c.command = proto::Command::commit;
   send_to_pure_workers(c);
   if (store_) store_->commit();
+  local_->commit();
 }
 
 void FarmEvaluator::rollback_step() {
@@ -208,9 +255,14 @@ void FarmEvaluator::rollback_step() {
   c.command = proto::Command::rollback;
   send_to_pure_workers(c);
   if (store_) store_->rollback();
+  local_->rollback();
 }
 
 std::vector<proto::UnitFields> FarmEvaluator::unit_fields(const std::vector<int>& units, int step) {
+  // Every coordinator gets the same `units`, so all refuse alike (no one waits).
+  for (int u : units)
+    FE2_CHECK(!(u >= 0 && static_cast<size_t>(u) < placement_.size() && layout_.is_local(u)),
+              "fields of unit {}: a macro_law point has no micro fields", u);
   // Every coordinator knows the placement (rebalance plans are broadcast), so each
   // holder answers without being asked twice; only pure workers need the request.
   proto::Control c;

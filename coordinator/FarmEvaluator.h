@@ -4,7 +4,9 @@
 //   rebalance   cost-based policy: coordinator 0 plans from measured per-unit CPU
 //               costs (Rebalancer), every rank learns the moves, states migrate
 //   dispatch    coordinator 0 tells pure workers to pull; each coordinator queues the
-//               jobs of its own units per worker (JobServer)
+//               jobs of its own units per worker (JobServer), except those of its
+//               local points (macro-law points, LocalPoints), which it evaluates itself
+//               between serving pulls
 //   serve/work  serve pulls and, if this rank also works, run its own units' jobs
 //               (PullClient), until every result of this coordinator's units is in
 //   account     worker stats and per-unit costs (proto::CostReport) reach coordinator 0
@@ -12,6 +14,7 @@
 // @note Every member function is collective on the coordinator group.
 #include "coordinator/FarmLayout.h"
 #include "coordinator/JobServer.h"
+#include "coordinator/LocalPoints.h"
 #include "coordinator/Rebalancer.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/Trace.h"
@@ -65,6 +68,9 @@ class FarmEvaluator final : public PointEvaluator {
   bool have_costs_ = false;
   int last_step_ = -1;
   IterationTiming last_;
+  std::vector<int> farm_units_;        ///< units that travel: the rebalancer's problem
+  std::vector<char> macro_law_;        ///< per unit: a macro-law point (trace counter)
+  std::optional<LocalPoints> local_;   ///< points this coordinator evaluates in place
   double t0_;
 };
 

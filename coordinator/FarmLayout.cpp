@@ -19,6 +19,13 @@ std::vector<int> FarmLayout::owned_units(int c) const {
   return out;
 }
 
+std::vector<int> FarmLayout::farm_units() const {
+  std::vector<int> out;
+  for (size_t u = 0; u < local_unit.size(); ++u)
+    if (!local_unit[u]) out.push_back(static_cast<int>(u));
+  return out;
+}
+
 std::vector<int> FarmLayout::owned_elements(int c) const {
   std::vector<int> out;
   for (size_t e = 0; e < coordinator_of_element.size(); ++e)
@@ -81,10 +88,19 @@ FarmLayout FarmLayout::make(const RunSpec& spec, int ranks, int override_count) 
   const int nu = spec.num_points();
   L.coordinator_of_unit.resize(nu);
   for (int u = 0; u < nu; ++u) L.coordinator_of_unit[u] = L.coordinator_of_element[u / spec.points_per_element];
-  const Placement p = static_placement(nu, static_cast<int>(L.worker_ranks.size()),
-                                       spec.farm.policy);
-  L.initial_worker_of_unit.resize(nu);
-  for (int u = 0; u < nu; ++u) L.initial_worker_of_unit[u] = L.worker_ranks[p.worker_of_unit[u]];
+  // Macro-law points cost microseconds, less than the ≈ 2 KB messages of a job: by
+  // default they stay with their element's coordinator and only FE² units are placed.
+  const std::vector<int> model = spec.model_of_points();
+  L.local_unit.assign(nu, 0);
+  if (spec.farm.macro_law_points == FarmOptions::MacroLawPoints::local)
+    for (int u = 0; u < nu; ++u)
+      L.local_unit[u] = spec.models[model[u]].kind == PointModelSpec::Kind::macro_law;
+  const std::vector<int> farm = L.farm_units();
+  const Placement p = static_placement(static_cast<int>(farm.size()),
+                                       static_cast<int>(L.worker_ranks.size()), spec.farm.policy);
+  L.initial_worker_of_unit = L.coordinator_of_unit;
+  for (size_t i = 0; i < farm.size(); ++i)
+    L.initial_worker_of_unit[farm[i]] = L.worker_ranks[p.worker_of_unit[i]];
   return L;
 }
 

@@ -15,9 +15,16 @@ struct FarmLayout {
   std::vector<int> worker_ranks;         ///< world ranks that hold units
   std::vector<int> coordinator_of_element;  ///< per macro element: owning coordinator's world rank
   std::vector<int> coordinator_of_unit;  ///< per unit (= integration point): its element's coordinator
-  std::vector<int> initial_worker_of_unit;  ///< per unit: world rank holding it at the start
+  /// per unit: world rank holding it at the start (a local unit: its coordinator)
+  std::vector<int> initial_worker_of_unit;
+  /// per unit: 1 if its coordinator evaluates it in place (a macro-law point with
+  /// farm.macro_law_points "local"; coordinator/LocalPoints.h): never a job, never moved
+  std::vector<char> local_unit;
 
   bool is_coordinator(int rank) const { return rank < coordinators; }
+  bool is_local(int unit) const { return local_unit[static_cast<size_t>(unit)] != 0; }
+  /// Units that travel through the farm (placed on workers, rebalanced), ascending.
+  std::vector<int> farm_units() const;
   bool is_worker(int rank) const;
   /// Units (points) owned by coordinator `c`, ascending.
   std::vector<int> owned_units(int c) const;

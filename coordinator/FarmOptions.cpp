@@ -71,6 +71,13 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
       farm.fail("factor_memory_budget", std::string(kBudgetType) + " (" + kBudgetHelp + ")");
     }
   }
+  fo.macro_law_points =
+      farm.choice("macro_law_points", "local", {"local", "farm"},
+                  "where macro-law points are evaluated: local (by the coordinator that owns "
+                  "their element, no messages) or farm (as jobs on the workers, like FE² units)") ==
+              "local"
+          ? MacroLawPoints::local
+          : MacroLawPoints::farm;
   farm.finish();
   return fo;
 }

@@ -28,6 +28,11 @@ struct FarmOptions {
   /// next job (worker/UnitStore.h). As written in the spec, for messages ("2G").
   double factor_memory_budget = 0.0;
   std::string factor_memory_budget_text;
+  /// Where macro-law points are evaluated: `local`, by the coordinator that owns their
+  /// element (microseconds of work, no message, never placed nor moved), or `farm`, as
+  /// jobs on the workers like FE² units (for laws costly enough to spread, e.g. a cell
+  /// ODE at many points with few coordinators).
+  enum class MacroLawPoints { local, farm } macro_law_points = MacroLawPoints::local;
 
   /// Reads the spec section "farm" (every key optional): the run and `farm-sim`
   /// (which replays a run from its spec.json) share these declarations.

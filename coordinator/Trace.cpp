@@ -23,7 +23,9 @@ void Trace::iteration(const IterationTiming& t) {
                             {"macro", t.macro},       {"assemble", t.assemble},
                             {"solve", t.solve},       {"comm1", t.comm1},
                             {"comm2", t.comm2},       {"bytes", t.bytes},
-                            {"migrations", t.migrations}, {"jobs", t.jobs}};
+                            {"migrations", t.migrations}, {"jobs", t.jobs},
+                            {"local_jobs", t.local_jobs}, {"local_cpu", t.local_cpu},
+                            {"macro_law_jobs_sent", t.macro_law_jobs_sent}};
   units_.flush();
   workers_.flush();
   iterations_ << j.dump() << '\n' << std::flush;

@@ -2,7 +2,9 @@
 // Load-balance traces, JSON Lines in the output folder (DESIGN §3, paper §IV-C):
 //   trace_iterations.jsonl  per (step, iteration): entire, micro_lc, macro (= assemble
 //                           + solve + the rest), comm1, comm2 (seconds, coordinator 0),
-//                           bytes, migrations
+//                           bytes, migrations, jobs (run by workers), local_jobs and
+//                           local_cpu (points evaluated by their coordinators),
+//                           macro_law_jobs_sent (macro-law points that travelled)
 //   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
 //                           wall), idle, wait, t_begin/t_end, migrations, bytes
 //   trace_units.jsonl       per (step, iteration, unit): worker, cost, refresh_cost,
@@ -29,7 +31,10 @@ struct IterationTiming {
   double comm1 = 0.0, comm2 = 0.0;
   long long bytes = 0;
   int migrations = 0;
-  int jobs = 0;
+  int jobs = 0;                       ///< jobs run by workers (they travelled)
+  long long local_jobs = 0;           ///< points evaluated by their coordinator (LocalPoints)
+  double local_cpu = 0.0;             ///< their CPU seconds
+  long long macro_law_jobs_sent = 0;  ///< jobs of macro-law points sent through the farm
 };
 
 class Trace {

@@ -18,16 +18,22 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
     in.macro.push_back(it.at("macro").get<double>());
     in.step.push_back(it.at("step").get<int>());
   }
+  // The units that travelled, numbered densely (points evaluated by their coordinators,
+  // farm.macro_law_points "local", have no records: they are no farm work).
+  std::map<int, int> dense;
+  for (const auto& u : t.units) dense.emplace(u.at("unit").get<int>(), 0);
   int units = 0;
-  for (const auto& u : t.units) units = std::max(units, u.at("unit").get<int>() + 1);
-  if (units == 0) throw InputError("farm-sim: trace_units.jsonl has no unit records");
+  for (auto& [id, v] : dense) v = units++;
+  if (units == 0)
+    throw InputError("farm-sim: trace_units.jsonl has no unit records (no point travelled "
+                     "through the farm: macro-law points are evaluated by their coordinators)");
   const size_t n = in.macro.size();
   in.cost.assign(n, std::vector<double>(units, 0.0));
   in.refreshed.assign(n, std::vector<char>(units, 0));
   in.refresh_part.assign(n, std::vector<double>(units, 0.0));
   in.state_bytes.assign(units, 0.0);
   for (const auto& u : t.units) {
-    const int v = u.at("unit").get<int>();
+    const int v = dense.at(u.at("unit").get<int>());
     in.state_bytes[v] = std::max(in.state_bytes[v], u.value("state_bytes", 0.0));
     auto it = index.find({u.at("step").get<int>(), u.at("iteration").get<int>()});
     if (it == index.end()) continue;  // an iteration the run did not finish

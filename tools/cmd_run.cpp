@@ -204,7 +204,8 @@ int run(const RunOptions& o) {
       store = std::make_unique<UnitStore>(spec.models, model_of_unit);
       store->set_factor_budget(spec.farm.factor_memory_budget);
       for (size_t u = 0; u < model_of_unit.size(); ++u)
-        if (layout.initial_worker_of_unit[u] == rank) store->create(static_cast<int>(u));
+        if (layout.initial_worker_of_unit[u] == rank && !layout.is_local(static_cast<int>(u)))
+          store->create(static_cast<int>(u));
     }
     if (!coordinator) {
       run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch);
@@ -268,6 +269,9 @@ int run(const RunOptions& o) {
           t.bytes = f.bytes;
           t.migrations = f.migrations;
           t.jobs = f.jobs;
+          t.local_jobs = f.local_jobs;
+          t.local_cpu = f.local_cpu;
+          t.macro_law_jobs_sent = f.macro_law_jobs_sent;
           trace->iteration(t);
         });
     if (rank == 0) points.shutdown();

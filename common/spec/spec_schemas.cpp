@@ -364,7 +364,12 @@ Schema make_run_spec_schema() {
                         {{"anyOf",
                           {{{"type", "number"}, {"exclusiveMinimum", 0}},
                            {{"type", "string"},
-                            {"pattern", "^[0-9]*[.]?[0-9]+([eE][+-]?[0-9]+)?[kKMGT]?$"}}}}})}})},
+                            {"pattern", "^[0-9]*[.]?[0-9]+([eE][+-]?[0-9]+)?[kKMGT]?$"}}}}})},
+                {"macro_law_points",
+                 choice("local", {"local", "farm"},
+                        "where macro-law points are evaluated: local (by the coordinator that "
+                        "owns their element, no messages) or farm (as jobs on the workers, like "
+                        "FE² units)")}})},
        {"output",
         object(false, "results",
                {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},

@@ -4,11 +4,14 @@
 //   farm_check imbalance DIR below|above X            imbalance after the first rebalance
 //   farm_check at_least DIR POINTER MIN               summary.json's number at a JSON pointer
 //                                                     (e.g. /factor_memory/evictions) >= MIN
+//   farm_check trace DIR KEY MIN MAX                  every line of trace_iterations.jsonl has
+//                                                     MIN <= KEY <= MAX (e.g. macro_law_jobs_sent 0 0)
 // Prints what it compared; exits 1 on a failed check, 2 on unreadable input.
 #include "coordinator/trace_analysis.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -149,7 +152,25 @@ int main(int argc, char** argv) {
     std::printf("%s: %g (at least %g)\n%s\n", argv[3], v, min, v >= min ? "PASS" : "FAIL");
     return v >= min ? 0 : 1;
   }
+  if (mode == "trace" && argc == 6) {
+    const fe2::TraceData t = fe2::read_traces(argv[2]);
+    const std::string key = argv[3];
+    const double lo = std::stod(argv[4]), hi = std::stod(argv[5]);
+    double low = INFINITY, high = -INFINITY, total = 0;
+    for (const json& it : t.iterations) {
+      if (!it.contains(key) || !it[key].is_number()) {
+        std::cerr << argv[2] << "/trace_iterations.jsonl: a line has no number '" << key << "'\n";
+        return 2;
+      }
+      const double v = it[key].get<double>();
+      low = std::min(low, v), high = std::max(high, v), total += v;
+    }
+    const bool ok = low >= lo && high <= hi;
+    std::printf("%s over %zu iterations: min %g, max %g, total %g (expected each in [%g, %g])\n%s\n",
+                key.c_str(), t.iterations.size(), low, high, total, lo, hi, ok ? "PASS" : "FAIL");
+    return ok ? 0 : 1;
+  }
   std::cerr << "usage: farm_check compare REF OUT TOL [MIN_MIGRATIONS] | imbalance DIR below|above X | "
-               "at_least DIR POINTER MIN\n";
+               "at_least DIR POINTER MIN | trace DIR KEY MIN MAX\n";
   return 2;
 }
