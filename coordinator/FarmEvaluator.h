@@ -62,15 +62,15 @@ class FarmEvaluator final : public PointEvaluator {
   JobServer server_;
   std::optional<PullClient> client_;
   std::vector<int> placement_;
+  std::vector<int> farm_units_;        ///< units that travel: the rebalancer's problem
+  std::vector<char> macro_law_;        ///< per unit: a macro-law point (trace counter)
+  std::optional<LocalPoints> local_;   ///< points this coordinator evaluates in place
   std::optional<CostModel> costs_;  ///< rank 0
   std::vector<proto::JobCost> last_cost_;      ///< rank 0: each unit's last job
   std::pair<int, int> last_costs_at_{-2, 0};   ///< (step, iteration) of those jobs
   bool have_costs_ = false;
   int last_step_ = -1;
   IterationTiming last_;
-  std::vector<int> farm_units_;        ///< units that travel: the rebalancer's problem
-  std::vector<char> macro_law_;        ///< per unit: a macro-law point (trace counter)
-  std::optional<LocalPoints> local_;   ///< points this coordinator evaluates in place
   double t0_;
 };
 
