@@ -154,7 +154,9 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
       rec.bytes = point.factor_bytes();
       rec.dropped = false;
     }
-    peak_held_ = std::max(peak_held_, held_factor_bytes());
+    // Only a job that holds a factor can raise the total (a sum over every unit here:
+    // O(units) per job, so not for the thousands of macro-law points a store may hold).
+    if (point.factor_bytes() > 0) peak_held_ = std::max(peak_held_, held_factor_bytes());
   };
   try {
     proto::JobOutput out = it->second->iterate(job);
