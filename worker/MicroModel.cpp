@@ -6,6 +6,7 @@
 #include "common/mesh/gmsh_reader.h"
 #include "worker/MumpsSingleFactor.h"
 #include "worker/micro_cell.h"
+#include "worker/micro_kernel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -212,17 +213,31 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
   pattern_.resize(n, n);
   pattern_.setFromTriplets(trip.begin(), trip.end());
   pattern_.makeCompressed();
-  scatter_.assign(static_cast<size_t>(ne) * 576, -1);
+  scatter_.resize(ne);
   const int* outer = pattern_.outerIndexPtr();
   const int* inner = pattern_.innerIndexPtr();
-  for (int e = 0; e < ne; ++e)
-    for (int l = 0; l < 24; ++l)
-      for (int m = 0; m < 24; ++m) {
-        const int row = eq_[e][l], col = eq_[e][m];
-        if (row < 0 || col < 0) continue;
-        const int* pos = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
-        scatter_[static_cast<size_t>(e) * 576 + 24 * l + m] = static_cast<int>(pos - inner);
+  const auto position = [&](int row, int col) {
+    const int* pos = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
+    FE2_CHECK(pos != inner + outer[col + 1] && *pos == row, "pattern holds every element entry");
+    return static_cast<int>(pos - inner);
+  };
+  for (int e = 0; e < ne; ++e) {
+    ElementScatter& sc = scatter_[e];
+    for (int b = 0; b < 8; ++b) {
+      const int col = eq_[e][hex_local(0, b)];
+      sc.stride[b] = col >= 0 ? outer[col + 1] - outer[col] : 0;
+      for (int a = 0; a < 8; ++a) {
+        const int row = eq_[e][hex_local(0, a)];
+        int& p = sc.block[8 * a + b];
+        p = row >= 0 && col >= 0 ? position(row, col) : -1;
+        // The layout the assembly relies on, checked entry by entry once per model.
+        for (int k = 0; k < 3 && p >= 0; ++k)
+          for (int i = 0; i < 3; ++i)
+            FE2_CHECK(position(eq_[e][hex_local(i, a)], eq_[e][hex_local(k, b)]) == p + i + k * sc.stride[b],
+                      "a node's rows adjacent and its columns alike in K's pattern");
       }
+    }
+  }
 
   // Fingerprint: sizes, regions and options (cheap FNV-1a over the defining data).
   Fnv1a hash;

@@ -86,8 +86,15 @@ class MicroModel {
   double inv_volume() const { return 1.0 / mesh_.volume(); }
   /// Equation of element unknown 8i + a, or -1 for the pinned node.
   const std::array<int, 24>& element_equations(int e) const { return eq_[e]; }
-  /// Position in K's value array of element entry (l, m), or -1.
-  const int* scatter(int e) const { return &scatter_[static_cast<size_t>(e) * 576]; }
+  /// Where element e's matrix goes in K's value array: entry (8i+a, 8k+b) at
+  /// block[8a+b] + i + k·stride[b], block −1 when node a or b is pinned. A node's three
+  /// rows are adjacent in every column and its three columns hold the same rows, so
+  /// 72 ints per element locate all 576 entries (and stream 8× less per assembly).
+  struct ElementScatter {
+    std::array<int, 64> block;  ///< position of (row of node a's x, column of node b's x)
+    std::array<int, 8> stride;  ///< column length of node b's columns
+  };
+  const ElementScatter& scatter(int e) const { return scatter_[e]; }
   /// The zero-valued K with the fixed pattern, to copy into each unit.
   const SparseMatrix& pattern() const { return pattern_; }
   /// True when every material's tangent has major symmetry, so H = Gᵀ and K is symmetric.
@@ -120,7 +127,7 @@ class MicroModel {
   PeriodicDofMap dofs_;
   std::vector<HexGeometry> geometry_;
   std::vector<std::array<int, 24>> eq_;
-  std::vector<int> scatter_;
+  std::vector<ElementScatter> scatter_;
   SparseMatrix pattern_;
   bool symmetric_ = true;
   double node_scale_ = 1.0;

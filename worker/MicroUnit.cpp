@@ -113,8 +113,6 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
       context = &point;
     }
     hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c, context);
-    const int* pos = m.scatter(e);
-    const bool pinned = std::any_of(eq.begin(), eq.end(), [](int g) { return g < 0; });
     double* Hv = sys.H.data();
     for (int l = 0; l < 24; ++l) {
       const int gl = eq[l];
@@ -122,13 +120,16 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
       sys.r[gl] += c.r[l];
       for (int j = 0; j < 9; ++j) Hv[9 * static_cast<size_t>(gl) + j] += c.H(j, l);
       if (need_G) Gt.col(gl) += c.G.row(l).transpose();
-      // K(l, k) at pos[24l + k]; only the 8 elements at the pinned node test for -1.
-      const int* row = pos + 24 * l;
-      if (pinned) {
-        for (int k = 0; k < 24; ++k)
-          if (row[k] >= 0) Kv[row[k]] += c.K(l, k);
-      } else {
-        for (int k = 0; k < 24; ++k) Kv[row[k]] += c.K(l, k);
+    }
+    // K: node block (a, b) of the element matrix, 3×3, into its place (MicroModel::scatter)
+    const MicroModel::ElementScatter& sc = m.scatter(e);
+    for (int b = 0; b < 8; ++b) {
+      const int stride = sc.stride[b];
+      for (int a = 0; a < 8; ++a) {
+        const int p = sc.block[8 * a + b];
+        if (p < 0) continue;  // the pinned node
+        for (int k = 0; k < 3; ++k)
+          for (int i = 0; i < 3; ++i) Kv[p + k * stride + i] += c.K(hex_local(i, a), hex_local(k, b));
       }
     }
     sys.Abar += c.Abar;

@@ -11,7 +11,7 @@ namespace {
 
 // Bytes per item, from the containers in MicroModel and MicroUnit (see the header).
 constexpr double kPerElementModel = 1600.0   // HexGeometry: 8 × (3×8 ∇N + weight) doubles
-                                    + 2304.0 // scatter: 576 ints
+                                    + 288.0  // scatter: 72 ints
                                     + 96.0   // equations: 24 ints
                                     + 36.0   // hex nodes and region
                                     + 3456.0;  // transient pattern lists (576 ints, grown)
