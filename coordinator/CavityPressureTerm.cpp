@@ -85,4 +85,15 @@ void CavityPressureTerm::commit(const MacroState& state) {
 
 void CavityPressureTerm::rollback() { current_ = committed_; }
 
+void CavityPressureTerm::save(ByteWriter& w) const {
+  w.put_array(committed_.data(), committed_.size());
+  w.put_array(V_n_.data(), V_n_.size());
+}
+
+void CavityPressureTerm::restore(ByteReader& r) {
+  committed_ = r.get_array<double>(static_cast<int64_t>(committed_.size()));
+  V_n_ = r.get_array<double>(static_cast<int64_t>(V_n_.size()));
+  current_ = committed_;
+}
+
 }  // namespace fe2

@@ -30,6 +30,9 @@ class CavityPressureTerm final : public MacroTerm {
   void assemble(const MacroState& state, MacroAssembly& out) override;
   void commit(const MacroState& state) override;
   void rollback() override;
+  /// The circulation's committed state and V_c of the last step.
+  void save(ByteWriter& w) const override;
+  void restore(ByteReader& r) override;
 
   /// The circulation's answer at the last assembly (valid where `assembles`).
   const CavityFlows& flows() const { return flows_; }

@@ -293,6 +293,82 @@ std::vector<proto::UnitFields> FarmEvaluator::unit_fields(const std::vector<int>
   return out;
 }
 
+void FarmEvaluator::save_states(const StateSink& sink) {
+  proto::Control c;
+  c.command = proto::Command::checkpoint;
+  for (size_t u = 0; u < placement_.size(); ++u) c.moves.push_back({static_cast<int>(u), placement_[u], 0});
+  send_to_pure_workers(c);
+  // A coordinator holds its local points and, if it works, units of the farm.
+  auto copy_here = [&](int u) { return local_->holds(u) ? local_->copy(u) : store_->copy(u); };
+  const int me = transport_.rank();
+  if (me != 0) {
+    send_unit_states(transport_, c.moves, copy_here);
+    return;
+  }
+  // Rank 0 writes each state as it comes, so it never holds more than the messages in flight.
+  std::vector<char> seen(placement_.size(), 0);
+  int expected = 0;
+  for (const proto::Move& m : c.moves) {
+    if (m.from != 0) {
+      ++expected;
+      continue;
+    }
+    sink(m.unit, copy_here(m.unit));
+    seen[m.unit] = 1;
+  }
+  for (int k = 0; k < expected; ++k) {
+    int from = -1;
+    proto::UnitState s = proto::UnitState::unpack(transport_.recv(proto::Type::state, MPI_ANY_SOURCE, &from));
+    FE2_CHECK(s.unit >= 0 && static_cast<size_t>(s.unit) < seen.size() && !seen[s.unit] &&
+                  placement_[s.unit] == from,
+              "rank {} sent the state of unit {} for the checkpoint; expected one of the units it holds, once",
+              from, s.unit);
+    seen[s.unit] = 1;
+    sink(s.unit, s.state);
+  }
+}
+
+void FarmEvaluator::restore_states(const std::vector<int>& points, const StateSource& read) {
+  // Every coordinator must know the order in which rank 0 sends (its own units' states
+  // arrive in it); pure workers learn it from the Control.
+  Bytes order;
+  if (coords_.rank() == 0) {
+    ByteWriter w(order);
+    w.put_array(points.data(), points.size());
+  }
+  coords_.bcast(order, 0);
+  ByteReader r(order, "checkpoint unit order");
+  const std::vector<int> units = r.get_array<int>();
+  proto::Control c;
+  c.command = proto::Command::restore;
+  for (int u : units) {
+    FE2_CHECK(u >= 0 && static_cast<size_t>(u) < placement_.size(), "checkpoint: unit {} of {}", u, placement_.size());
+    c.moves.push_back({u, 0, placement_[u]});
+  }
+  send_to_pure_workers(c);
+  auto restore_here = [&](int u, const Bytes& state) {
+    if (local_->holds(u)) local_->restore(u, state);
+    else store_->restore(u, state);
+  };
+  const int me = transport_.rank();
+  if (me != 0) {
+    receive_unit_states(transport_, c.moves, restore_here);
+    return;
+  }
+  for (const proto::Move& m : c.moves) {
+    if (m.to == 0) {
+      restore_here(m.unit, read(m.unit));
+      continue;
+    }
+    proto::UnitState s;
+    s.unit = m.unit;
+    s.state = read(m.unit);
+    Bytes b;
+    s.pack(b);
+    transport_.send(m.to, proto::Type::state, std::move(b));
+  }
+}
+
 void FarmEvaluator::shutdown() {
   proto::Control c;
   c.command = proto::Command::shutdown;

@@ -38,6 +38,12 @@ class FarmEvaluator final : public PointEvaluator {
   /// Coordinator 0 asks each unit's holder (itself, another coordinator that works, or a
   /// pure worker by a Control 'fields') to send it the unit's fields.
   std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
+  /// Each holder (a pure worker by a Control 'checkpoint') sends rank 0 a copy of each
+  /// of its units' states; rank 0 hands them to `sink` as they arrive.
+  void save_states(const StateSink& sink) override;
+  /// Rank 0 sends each unit's state to its holder under the current placement (pure
+  /// workers by a Control 'restore'), in `points` order.
+  void restore_states(const std::vector<int>& points, const StateSource& read) override;
   /// Rank 0: tells every pure worker to stop.
   void shutdown();
 

@@ -36,4 +36,19 @@ std::vector<proto::UnitFields> LocalEvaluator::unit_fields(const std::vector<int
   return out;
 }
 
+void LocalEvaluator::save_states(const StateSink& sink) {
+  for (int k = 0; k < size(); ++k) {
+    Bytes b;
+    points_[k]->serialize(b);
+    sink(k, b);
+  }
+}
+
+void LocalEvaluator::restore_states(const std::vector<int>& points, const StateSource& read) {
+  for (int k : points) {
+    FE2_CHECK(k >= 0 && k < size(), "restoring point {}: there are {} points", k, size());
+    points_[k]->deserialize(read(k));
+  }
+}
+
 }  // namespace fe2

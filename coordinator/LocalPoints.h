@@ -42,6 +42,9 @@ class LocalPoints {
 
   void commit() { store_.commit(); }
   void rollback() { store_.rollback(); }
+  /// Checkpoints and restarts: a point's whole state, as a worker's store copies it.
+  Bytes copy(int unit) const { return store_.copy(unit); }
+  void restore(int unit, const Bytes& state) { store_.restore(unit, state); }
 
  private:
   const std::vector<int> model_of_unit_;  ///< lent to store_: declared before it

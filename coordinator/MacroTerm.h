@@ -9,6 +9,7 @@
 // Sign convention: the residual is R = f_int − f_ext (zero at equilibrium) and the
 // tangent is K = ∂R/∂x, so Newton solves K Δx = −R. A point model's R̃ (with P̃, Eq. 9)
 // drives Newton; the true R (with P̄) decides convergence.
+#include "common/bytes.h"
 #include "coordinator/MacroSystem.h"
 
 #include <Eigen/Dense>
@@ -72,6 +73,9 @@ class MacroTerm {
   /// The step converged / is being cut back (terms with their own history).
   virtual void commit(const MacroState&) {}
   virtual void rollback() {}
+  /// The committed history, for checkpoints (terms without one write nothing).
+  virtual void save(ByteWriter&) const {}
+  virtual void restore(ByteReader&) {}
 };
 
 }  // namespace fe2

@@ -6,6 +6,7 @@
 #include "proto/messages.h"
 #include "worker/point_models.h"
 
+#include <functional>
 #include <vector>
 
 namespace fe2 {
@@ -23,6 +24,17 @@ class PointEvaluator {
   /// before commit_step (worker/unit_fields.h). In `units` order on the first
   /// coordinator, empty on the others. @note Collective on the coordinator group.
   virtual std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) = 0;
+
+  /// Checkpoints: a copy of every point's state (its whole history) goes to `sink` on the
+  /// first coordinator, each point once, in no fixed order. At a step boundary (after
+  /// commit_step). @note Collective on the coordinator group.
+  using StateSink = std::function<void(int point, const Bytes& state)>;
+  virtual void save_states(const StateSink& sink) = 0;
+  /// Restarts: replaces the state of each point of `points` (every point once; significant
+  /// on the first coordinator) with `read(point)`, which is called there in that order.
+  /// Before the first evaluate. @note Collective on the coordinator group.
+  using StateSource = std::function<Bytes(int point)>;
+  virtual void restore_states(const std::vector<int>& points, const StateSource& read) = 0;
 };
 
 /// All points on this process, evaluated in order.
@@ -35,6 +47,8 @@ class LocalEvaluator final : public PointEvaluator {
   void commit_step() override;
   void rollback_step() override;
   std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
+  void save_states(const StateSink& sink) override;
+  void restore_states(const std::vector<int>& points, const StateSource& read) override;
   PointModel& point(int k) { return *points_[k]; }
   int size() const { return static_cast<int>(points_.size()); }
 

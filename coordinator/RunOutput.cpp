@@ -20,6 +20,7 @@ bool is_run_output_file(const std::string& name) {
       "(summary\\.json|spec\\.json|fe2heart\\.log|displacement\\.pvd|displacement_[0-9]+\\.vtu|"
       "trace_[a-z_]+\\.jsonl|cumulative_times\\.png|gantt\\.png|gantt_all\\.png|imbalance\\.png|"
       "pv_curve\\.png|pv_loop\\.png|pv_time\\.png|circulation\\.csv|"
+      "checkpoint\\.bin|checkpoint\\.bin\\.previous|checkpoint\\.bin\\.partial|"
       "units/unit_[0-9]+\\.pvd|units/unit_[0-9]+_[0-9]+\\.vtu)"
       "(\\.tmp)?");
   return std::regex_match(name, own);
@@ -61,14 +62,14 @@ void check_output_folder(const std::string& dir, bool overwrite) {
       earlier.size() > shown ? ", ..." : ""));
 }
 
-RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
+RunOutput::RunOutput(const std::string& dir, const RunSpec& spec, bool resume) : dir_(dir) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_))
     throw InputError(fmt::format("--out '{}': cannot create the output folder ({})", dir_,
                                  ec.message()));
   // No stale VTU of steps this run never reaches may sit beside its own.
-  for (const std::string& name : run_output_files(dir_)) {
+  for (const std::string& name : resume ? std::vector<std::string>{} : run_output_files(dir_)) {
     fs::remove(fs::path(dir_) / name, ec);
     if (ec)
       throw InputError(fmt::format("--out '{}': cannot remove '{}' of the earlier run ({})", dir_,
@@ -79,6 +80,7 @@ RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
   for (const auto& [name, surface] : spec.cavities)
     reference_volumes_.push_back(cavity_volume(spec.mesh, surface, zero).volume);
   if (spec.write_vtu) pvd_ = std::make_unique<PvdWriter>(pvd_path());
+  if (resume) return;  // resume() rewrites the summary
   // Before the first step: the summary of a run killed during it says so.
   json s;
   s["title"] = spec.title;
@@ -91,6 +93,18 @@ RunOutput::RunOutput(const std::string& dir, const RunSpec& spec) : dir_(dir) {
   s["probes"] = probes;
   s["history"] = json::array();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
+}
+
+void RunOutput::resume(const RunResult& done, const std::function<bool(int)>& is_output_step) {
+  progress_ = done;
+  if (!pvd_) return;
+  auto relist = [&](int step, double time) {
+    const std::string path = dir_ + "/" + fmt::format("displacement_{:05d}.vtu", step);
+    if (fs::exists(path)) pvd_->add(time, path);
+  };
+  relist(0, 0.0);
+  for (const StepRecord& r : done.history)
+    if (is_output_step(r.step)) relist(r.step + 1, r.time);
 }
 
 std::string RunOutput::pvd_path() const { return dir_ + "/displacement.pvd"; }
@@ -157,8 +171,9 @@ void RunOutput::write_summary(const Simulation& sim, const RunResult& r, double 
 void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bool complete) {
   json s;
   s["title"] = sim.spec().title;
-  s["complete"] = complete;
+  s["complete"] = complete && !r.stopped;
   s["converged"] = complete && r.converged;
+  if (r.stopped) s["stopped"] = "by a signal, after a checkpoint (continue with --restart)";
   s["steps"] = r.steps;
   s["newton_iterations"] = r.newton_iterations;
   if (!r.error.empty()) s["error"] = r.error;

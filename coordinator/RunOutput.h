@@ -9,6 +9,7 @@
 
 #include "common/io/vtu_writer.h"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,7 +41,14 @@ class RunOutput {
   /// Creates `dir` (InputError if it cannot), removes the files of an earlier run
   /// from it (check_output_folder() has allowed that; other files are left alone),
   /// copies the spec into it and writes an incomplete summary.json.
-  RunOutput(const std::string& dir, const RunSpec& spec);
+  /// With `resume` (a restart into the folder of the run it continues) nothing of the
+  /// earlier run is removed, and resume() takes up its series and summary.
+  RunOutput(const std::string& dir, const RunSpec& spec, bool resume = false);
+  /// A restart: the PVD lists again the VTUs of the steps behind (`done`, those of
+  /// `is_output_step` whose file is in the folder), and the summary continues them.
+  void resume(const RunResult& done, const std::function<bool(int step)>& is_output_step);
+  /// The steps so far (write_progress), for checkpoints.
+  const RunResult& progress() const { return progress_; }
   /// Writes the fields of the current state as step `step` (VTU + PVD entry); `P` is
   /// Simulation::gather_point_fields() (collective, so the caller gathers).
   void write_fields(const Simulation& sim, const PointFields& fields, int step, double time);

@@ -524,6 +524,9 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   spec.output_every = out.integer("every", 1, Range::closed(1, 1e7), "write every k-th step");
   spec.write_vtu = out.boolean("vtu", true, "write VTU/PVD for ParaView");
   spec.output_units = read_output_units(out, spec);
+  spec.checkpoint_every = out.integer("checkpoint_every", 0, Range::closed(0, 1e7),
+                                      "write a checkpoint (checkpoint.bin) every k-th step; 0: only on "
+                                      "SIGTERM/SIGUSR1");
   out.finish();
   root.finish();
   const std::string canonical = j.dump();

@@ -119,6 +119,7 @@ struct RunSpec {
   std::shared_ptr<const Circulation> circulation;
   std::vector<int> coupled_cavities;
   int output_every = 1;
+  int checkpoint_every = 0;       ///< output.checkpoint_every (0: only on a signal)
   bool write_vtu = true;
   /// output.units: points (FE² units) whose micro fields are written at output steps.
   std::vector<int> output_units;

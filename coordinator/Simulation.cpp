@@ -481,11 +481,49 @@ bool Simulation::is_output_step(int step) const {
   return (step + 1) % spec_.output_every == 0 || step + 1 == spec_.steps;
 }
 
-RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_iteration) {
+void Simulation::save_state(ByteWriter& w) {
+  w.put(t_n_);
+  w.put_array(x_n_.data(), static_cast<size_t>(x_n_.size()));
+  w.put_array(v_n_.data(), static_cast<size_t>(v_n_.size()));
+  w.put_array(a_n_.data(), static_cast<size_t>(a_n_.size()));
+  w.put<uint64_t>(terms_.size());
+  for (const auto& term : terms_) {
+    w.put_string(term->name());
+    term->save(w);
+  }
+  macro_solver_.drop_factor();
+}
+
+void Simulation::restore_state(ByteReader& r) {
+  t_n_ = r.get<double>();
+  r.get_array_into(x_n_.data(), static_cast<size_t>(x_n_.size()));
+  r.get_array_into(v_n_.data(), static_cast<size_t>(v_n_.size()));
+  r.get_array_into(a_n_.data(), static_cast<size_t>(a_n_.size()));
+  const auto terms = r.get<uint64_t>();
+  if (terms != terms_.size())
+    throw InputError(fmt::format("{}: {} macro terms where this run has {}", r.what(), terms, terms_.size()));
+  for (auto& term : terms_) {
+    const std::string name = r.get_string();
+    if (name != term->name())
+      throw InputError(fmt::format("{}: macro term '{}' where this run has '{}'", r.what(), name, term->name()));
+    term->restore(r);
+  }
+  x_ = x_n_;
+  v_ = v_n_;
+  a_ = a_n_;
+  // Z̄_n as the last converged iteration computed it: B̄ ū_n.
+  for (size_t s = 0; s < owned_points_.size(); ++s)
+    Zbar_n_[s] = points_[owned_points_[s]].B * gather(x_n_, point_dofs_[s]);
+  Zbar_ = Zbar_n_;
+  macro_solver_.drop_factor();
+}
+
+RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_iteration, RunResult done) {
   on_iteration_ = on_iteration;
-  RunResult result;
+  RunResult result = std::move(done);
+  result.converged = false;
   const double dt_nominal = spec_.t_end / spec_.steps;
-  for (int step = 0; step < spec_.steps; ++step) {
+  for (int step = result.steps; step < spec_.steps; ++step) {
     StepRecord rec;
     rec.step = step;
     const double t0 = wall_seconds();
@@ -550,6 +588,10 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     result.steps = step + 1;
     result.history.push_back(rec);
     if (on_step) on_step(rec);
+    if (stop_requested_) {
+      result.stopped = true;
+      break;
+    }
     if (beat_is_periodic(result)) {
       spdlog::info("periodic after {} beats: EDV changed by {:.2e} (relative) over the last beat, "
                    "below time.periodic_tolerance = {:.1e}",

@@ -69,6 +69,7 @@ struct RunResult {
   std::vector<StepRecord> history;
   std::string error;                  ///< why the run stopped early, if it did
   bool periodic = false;              ///< stopped at a periodic beat (time.periodic_tolerance)
+  bool stopped = false;               ///< stopped early on request (a signal), after a whole step
   double edv_change = 0.0;            ///< time.beats: EDV change over the last whole beat
 };
 
@@ -85,8 +86,20 @@ class Simulation {
   using StepHook = std::function<void(const StepRecord&)>;
   /// Called after every Newton iteration with its phase times (traces); may be empty.
   using IterationHook = std::function<void(const IterationTiming&)>;
-  /// @note Collective.
-  RunResult run(const StepHook& on_step = {}, const IterationHook& on_iteration = {});
+  /// `done`: the steps a restarted run has behind it (restore_state first); run()
+  /// continues after them. @note Collective.
+  RunResult run(const StepHook& on_step = {}, const IterationHook& on_iteration = {},
+                RunResult done = {});
+  /// run() returns after the step in progress (or the one on_step reports), with
+  /// `stopped` set: a batch system's signal, once a checkpoint is written.
+  void request_stop() { stop_requested_ = true; }
+
+  /// Checkpoints: the committed macro state (t, ū and its rates, p, each term's
+  /// history), the same on every coordinator. Also drops the kept macro factor, so
+  /// that this run and one restarted from here start the next step alike (bit for bit).
+  void save_state(ByteWriter& w);
+  /// Restarts: what save_state wrote. Before run(). @note Not collective.
+  void restore_state(ByteReader& r);
 
   /// Adds a macro term (tests: manufactured body forces). Before the first run().
   void add_term(std::unique_ptr<MacroTerm> term);
@@ -191,6 +204,7 @@ class Simulation {
   std::unique_ptr<MacroAssembly> assembly_;
   IterationHook on_iteration_;
   std::vector<proto::UnitFields> unit_fields_;
+  bool stop_requested_ = false;
 };
 
 }  // namespace fe2

@@ -2,20 +2,45 @@
 
 #include "common/error.h"
 
+#include <filesystem>
+
 namespace fe2 {
 
 namespace {
-std::ofstream open(const std::string& path) {
-  std::ofstream f(path, std::ios::trunc);
+/// A trace file: new, or (`keep` not null) an existing one cut to `*keep` bytes and appended to.
+std::ofstream open(const std::string& path, const uint64_t* keep) {
+  if (keep) {
+    std::error_code ec;
+    const bool present = std::filesystem::exists(path, ec);
+    if (!present || std::filesystem::file_size(path, ec) < *keep)
+      throw InputError(fmt::format("cannot continue trace file '{}': it has fewer than the {} bytes the "
+                                   "checkpoint recorded", path, *keep));
+    std::filesystem::resize_file(path, *keep, ec);
+    if (ec) throw InputError(fmt::format("cannot cut trace file '{}' back to {} bytes ({})", path, *keep, ec.message()));
+  }
+  std::ofstream f(path, keep ? std::ios::app : std::ios::trunc);
   if (!f) throw InputError(fmt::format("cannot write trace file '{}'", path));
   return f;
 }
 }  // namespace
 
-Trace::Trace(const std::string& dir)
-    : iterations_(open(dir + "/trace_iterations.jsonl")),
-      workers_(open(dir + "/trace_workers.jsonl")),
-      units_(open(dir + "/trace_units.jsonl")) {}
+Trace::Trace(const std::string& dir, const TraceOffsets* resume)
+    : dir_(dir),
+      iterations_(open(dir + "/trace_iterations.jsonl", resume ? &resume->iterations : nullptr)),
+      workers_(open(dir + "/trace_workers.jsonl", resume ? &resume->workers : nullptr)),
+      units_(open(dir + "/trace_units.jsonl", resume ? &resume->units : nullptr)) {}
+
+TraceOffsets Trace::offsets() {
+  auto at = [this](std::ofstream& f, const char* name) {
+    f.flush();
+    std::error_code ec;
+    const auto n = std::filesystem::file_size(dir_ + "/" + name, ec);
+    if (ec) throw Error(fmt::format("cannot read the size of trace file '{}/{}' ({})", dir_, name, ec.message()));
+    return static_cast<uint64_t>(n);
+  };
+  return {at(iterations_, "trace_iterations.jsonl"), at(workers_, "trace_workers.jsonl"),
+          at(units_, "trace_units.jsonl")};
+}
 
 void Trace::iteration(const IterationTiming& t) {
   const nlohmann::json j = {{"step", t.step},         {"iteration", t.iteration},

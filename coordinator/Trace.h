@@ -37,14 +37,24 @@ struct IterationTiming {
   long long macro_law_jobs_sent = 0;  ///< jobs of macro-law points sent through the farm
 };
 
+/// Bytes written to each trace file so far (checkpoints; a restart continues there).
+struct TraceOffsets {
+  uint64_t iterations = 0, workers = 0, units = 0;
+};
+
 class Trace {
  public:
-  explicit Trace(const std::string& dir);
+  /// New trace files in `dir`; with `resume`, the files there are cut back to those
+  /// offsets (dropping what a killed run wrote after its checkpoint) and appended to.
+  explicit Trace(const std::string& dir, const TraceOffsets* resume = nullptr);
+  /// Flushes, and says how far each file is.
+  TraceOffsets offsets();
   void iteration(const IterationTiming& t);
   void worker(const proto::WorkerStats& s, double micro_phase_seconds, double t0);
   void unit(int step, int iteration, int worker, const proto::JobCost& c);
 
  private:
+  std::string dir_;
   std::ofstream iterations_, workers_, units_;
 };
 

@@ -63,4 +63,10 @@ void UnitOutput::write(const std::vector<proto::UnitFields>& fields, double time
   }
 }
 
+void UnitOutput::resume(const std::vector<std::pair<int, double>>& output_steps) {
+  for (auto& [unit, series] : units_)
+    for (const auto& [step, time] : output_steps)
+      if (fs::exists(vtu_path(unit, step))) series.pvd->add(time, vtu_path(unit, step));
+}
+
 }  // namespace fe2

@@ -26,6 +26,9 @@ class UnitOutput {
   UnitOutput(const std::string& dir, const RunSpec& spec);
   /// Writes one VTU per unit of `fields` and adds it to the unit's PVD at `time`.
   void write(const std::vector<proto::UnitFields>& fields, double time);
+  /// A restart into the same folder: each unit's PVD lists again the VTUs of the output
+  /// steps behind, (step from 1, time) in order, whose files are there.
+  void resume(const std::vector<std::pair<int, double>>& output_steps);
   std::string pvd_path(int unit) const;
   std::string vtu_path(int unit, int step) const;
 

@@ -58,9 +58,13 @@ struct Hello {
 
 /// `fields`: after a step's converged iteration and before its commit, the holder of
 /// each unit in `moves` (unit, from = holder, to = rank 0) sends it its UnitFields.
+/// `checkpoint`: at a step boundary, the holder of each unit in `moves` (from = holder,
+/// to = rank 0) sends it a copy of the unit's state (a State message) and keeps the unit.
+/// `restore`: rank 0 sends each unit in `moves` (from = 0, to = holder), in that order,
+/// the state read from a checkpoint; the holder replaces its unit's state with it.
 enum class Command : uint8_t { iterate = 1, commit = 2, rollback = 3, rebalance = 4, shutdown = 5,
-                               fields = 6 };
-constexpr uint8_t kLastCommand = 6;
+                               fields = 6, checkpoint = 7, restore = 8 };
+constexpr uint8_t kLastCommand = 8;
 
 struct Move {
   int32_t unit, from, to;

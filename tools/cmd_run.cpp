@@ -3,6 +3,7 @@
 #include "common/circulation/circulation_run_spec.h"
 #include "common/cpu_timer.h"
 #include "common/io/atomic_file.h"
+#include "coordinator/Checkpoint.h"
 #include "coordinator/FarmEvaluator.h"
 #include "coordinator/FarmLayout.h"
 #include "coordinator/RunOutput.h"
@@ -19,11 +20,59 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <csignal>
 #include <ctime>
+#include <filesystem>
 
 namespace fe2::cli {
 
 namespace {
+
+/// A batch system's request to stop (SIGTERM, SIGUSR1): the run checkpoints at the next
+/// step boundary and exits 0. Every rank catches it, so a pure worker is not killed.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
+
+/// --restart on rank 0, before anything is built: the checkpoint (checked whole), the
+/// spec it ran against this one, and whether the run continues in its own folder.
+struct Restart {
+  std::unique_ptr<CheckpointFile> file;
+  bool in_place = false;             ///< --out is the folder the checkpoint is in
+  RunResult done;                    ///< the steps behind
+  TraceOffsets trace;
+  std::vector<std::string> notes;    ///< for the log: newer checkpoints refused, and why
+};
+
+Restart open_restart(const RunOptions& o, const RunSpec& spec) {
+  Restart r;
+  r.file = std::make_unique<CheckpointFile>(open_checkpoint(o.restart, proto::kProtocolVersion, &r.notes));
+  const CheckpointHeader& h = r.file->header();
+  json saved;
+  try {
+    saved = json::parse(h.spec_text);
+  } catch (const json::exception& e) {
+    throw InputError(fmt::format("checkpoint '{}': its spec is not JSON ({})", r.file->path(), e.what()));
+  }
+  const std::vector<std::string> keys = spec_differences(saved, spec.raw);
+  if (!keys.empty()) {
+    std::string list;
+    for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
+    const std::string what = fmt::format("--restart '{}': spec '{}' differs from the one the checkpoint ran in {}",
+                                         r.file->path(), o.spec, list);
+    if (!o.force)
+      throw InputError(what + "; a restart may change only output, farm and title (--force continues anyway)");
+    r.notes.push_back(what + " (--force)");
+  }
+  if (h.steps > spec.steps)
+    throw InputError(fmt::format("--restart '{}': the checkpoint is after step {}, the spec has {} steps",
+                                 r.file->path(), h.steps, spec.steps));
+  r.done = unpack_run_section(h.run, r.trace, fmt::format("checkpoint '{}'", r.file->path()));
+  std::error_code ec;
+  const auto folder = std::filesystem::path(r.file->path()).parent_path();
+  r.in_place = std::filesystem::exists(o.out, ec) &&
+               std::filesystem::equivalent(folder.empty() ? "." : folder, o.out, ec);
+  return r;
+}
 
 std::string describe(const RunSpec& spec) {
   long long units = 0, dofs = 0;
@@ -170,10 +219,13 @@ int run(const RunOptions& o) {
   proto::set_stall_timeout(FarmOptions{}.stall_timeout);  // until the spec says otherwise
   RunSpec spec;
   FarmLayout layout;
+  Restart restart;  // rank 0
   std::string input_error;
   try {
     spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
-    if (rank == 0) check_output_folder(o.out, o.overwrite);  // before anything is written
+    if (rank == 0 && !o.restart.empty()) restart = open_restart(o, spec);
+    // Before anything is written; a restart continues in its own folder.
+    if (rank == 0 && !restart.in_place) check_output_folder(o.out, o.overwrite);
     if (!o.policy.empty())
       spec.farm.policy = FarmOptions::policy_of(o.policy);
     // spec.json in the output is the spec that ran (farm-sim replays its farm section).
@@ -191,6 +243,8 @@ int run(const RunOptions& o) {
   proto::set_stall_timeout(spec.farm.stall_timeout);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
+  std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGUSR1, on_stop_signal);
 
   const bool coordinator = layout.is_coordinator(rank);
   const proto::Group coords = world.split(coordinator ? 0 : -1, rank);
@@ -215,15 +269,16 @@ int run(const RunOptions& o) {
     std::unique_ptr<UnitOutput> unit_output;
     std::unique_ptr<Trace> trace;
     if (rank == 0) {
-      output = std::make_unique<RunOutput>(o.out, spec);
+      output = std::make_unique<RunOutput>(o.out, spec, restart.in_place);
       unit_output = std::make_unique<UnitOutput>(o.out, spec);
-      trace = std::make_unique<Trace>(o.out);
+      trace = std::make_unique<Trace>(o.out, restart.in_place ? &restart.trace : nullptr);
       auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
       spdlog::default_logger()->sinks().push_back(sink);
       // Line by line: a killed or aborted run keeps its log up to the last line.
       spdlog::default_logger()->flush_on(spdlog::level::trace);
       log_open = true;
       spdlog::info("fe2heart run {}: {}", o.spec, spec.title);
+      for (const std::string& note : restart.notes) spdlog::warn("{}", note);
       spdlog::info("{}", describe(spec));
       for (const std::string& w : spec.warnings) spdlog::warn("{}", w);
       for (const auto& m : spec.models) {
@@ -239,6 +294,21 @@ int run(const RunOptions& o) {
     }
     FarmEvaluator points(transport, coords, layout, spec, store.get(), trace.get());
     Simulation sim(spec, points, coords, layout.owned_elements(rank));
+    RunResult done;
+    if (!o.restart.empty()) {
+      TraceOffsets ignored;
+      done = restore_checkpoint(restart.file.get(), sim, points, coords, ignored);
+      if (output) {
+        output->resume(done, [&](int step) { return sim.is_output_step(step); });
+        std::vector<std::pair<int, double>> steps;
+        for (const StepRecord& r : done.history)
+          if (sim.is_output_step(r.step)) steps.emplace_back(r.step + 1, r.time);
+        if (restart.in_place) unit_output->resume(steps);
+        spdlog::info("restarted from {} (written by {} rank(s), {} coordinator(s)) after step {}, t = {:.6g}",
+                     restart.file->path(), restart.file->header().ranks, restart.file->header().coordinators,
+                     done.steps, restart.file->header().time);
+      }
+    }
     const double t0 = wall_seconds();
     auto write_fields = [&](int step, double time) {
       const PointFields f = sim.gather_point_fields();
@@ -247,7 +317,8 @@ int run(const RunOptions& o) {
       if (unit_output && !sim.unit_fields().empty() && sim.unit_fields().front().step == step)
         unit_output->write(sim.unit_fields(), time);
     };
-    write_fields(0, 0.0);
+    if (o.restart.empty()) write_fields(0, 0.0);
+    int stop_signal = 0;
     const RunResult result = sim.run(
         [&](const StepRecord& r) {
           const double elapsed = wall_seconds() - t0;
@@ -260,6 +331,19 @@ int run(const RunOptions& o) {
                        format_duration(elapsed), format_duration(remaining));
           if (sim.is_output_step(r.step)) write_fields(r.step + 1, r.time);
           if (output) output->write_progress(sim, r, wall_seconds() - t0);
+          // A signal on any coordinator stops all of them at this boundary, after a checkpoint.
+          const int signal = coords.allreduce_max(static_cast<int>(g_stop_signal));
+          if (signal != 0 || (spec.checkpoint_every > 0 && (r.step + 1) % spec.checkpoint_every == 0)) {
+            const CheckpointWritten w =
+                write_checkpoint(checkpoint_path(o.out), spec, world.size(), sim, points, coords,
+                                 output ? output->progress() : RunResult{}, trace ? trace->offsets() : TraceOffsets{});
+            spdlog::info("checkpoint after step {}: {} ({}, {:.2f} s)", r.step + 1, w.path,
+                         format_bytes(static_cast<double>(w.bytes)), w.seconds);
+          }
+          if (signal != 0) {
+            stop_signal = signal;
+            sim.request_stop();
+          }
         },
         [&](IterationTiming t) {
           if (!trace) return;
@@ -273,7 +357,8 @@ int run(const RunOptions& o) {
           t.local_cpu = f.local_cpu;
           t.macro_law_jobs_sent = f.macro_law_jobs_sent;
           trace->iteration(t);
-        });
+        },
+        std::move(done));
     if (rank == 0) points.shutdown();
     if (output) output->write_summary(sim, result, wall_seconds() - t0);
     if (output && !spec.cavities.empty()) {
@@ -286,6 +371,12 @@ int run(const RunOptions& o) {
       const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_LOOP_SCRIPT, o.out);
       if (std::system(cmd.c_str()) != 0)
         spdlog::warn("no pv_loop.png, pv_time.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+    }
+    if (result.stopped) {
+      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", stop_signal == SIGTERM ? "SIGTERM" : stop_signal == SIGUSR1 ? "SIGUSR1" : std::to_string(stop_signal),
+                   result.steps, result.history.back().time, checkpoint_path(o.out));
+      spdlog::info("continue with: fe2heart run {} --out {} --restart {}", o.spec, o.out, o.out);
+      return 0;
     }
     if (!result.converged) {
       spdlog::error("run stopped: {}", result.error);

@@ -13,6 +13,8 @@ struct RunOptions {
   std::string policy;    ///< empty: from the spec
   std::string memory_limit;  ///< "8G", "500M", bytes; empty: the available memory
   bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
+  std::string restart;     ///< a checkpoint file or a run folder to continue from
+  bool force = false;      ///< restart although the spec changed beyond output/farm
 };
 int run(const RunOptions& o);
 /// `memory_limit` as in RunOptions.

@@ -35,6 +35,14 @@ int main(int argc, char** argv) {
   c_run->add_flag("--overwrite", run.overwrite,
                   "replace an earlier run in the --out folder (its files only; without this "
                   "flag such a folder is refused)");
+  c_run->add_option("--restart", run.restart,
+                    "continue from a checkpoint: a run folder (its newest good checkpoint.bin, else "
+                    "checkpoint.bin.previous) or a checkpoint file; any number of ranks and "
+                    "coordinators. With --out the same folder, its traces, series and summary continue");
+  c_run->add_flag("--force", run.force,
+                  "--restart although the spec differs from the checkpoint's outside output, farm and "
+                  "title (e.g. a later time.t_end, other tolerances); the state must still fit the spec "
+                  "(same mesh, points and unit models), else it is refused");
 
   std::string validate_spec;
   auto* c_validate = app.add_subcommand("validate", "check a run or unit spec and its meshes");

@@ -14,7 +14,7 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
   Fault fault;
   auto bad = [&](const std::string& what) {
     throw InputError(fmt::format("FE2HEART_FAULT='{}': {}; expected "
-                                 "unit=K[,step=S][,kind=numerical|fatal|stall] with integers K, S >= 0",
+                                 "unit=K[,step=S][,kind=numerical|fatal|stall|kill] with integers K, S >= 0",
                                  value, what));
   };
   auto integer = [&](const std::string& key, const std::string& v) {
@@ -44,10 +44,11 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
     } else if (key == "step") {
       fault.step = integer(key, v);
     } else if (key == "kind") {
-      if (v != "numerical" && v != "fatal" && v != "stall")
-        bad(fmt::format("unknown kind '{}' (kinds: numerical, fatal, stall)", v));
+      if (v != "numerical" && v != "fatal" && v != "stall" && v != "kill")
+        bad(fmt::format("unknown kind '{}' (kinds: numerical, fatal, stall, kill)", v));
       fault.fatal = v == "fatal";
       fault.stall = v == "stall";
+      fault.kill = v == "kill";
     } else {
       bad(fmt::format("unknown field '{}' (fields: unit, step, kind)", key));
     }
@@ -130,6 +131,7 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
   FE2_CHECK(it != units_.end(), "job for unit {} which does not live here", job.unit);
   if (job.unit == fault_.unit && job.step >= fault_.step) {
     if (fault_.stall) std::raise(SIGSTOP);  // freeze this rank, as `kill -STOP` does
+    if (fault_.kill) std::raise(SIGKILL);   // a node that dies: no handler, no cleanup
     if (fault_.fatal)
       throw Error(fmt::format("unit {}: injected fatal fault (FE2HEART_FAULT)", job.unit));
     proto::JobOutput out;
@@ -209,6 +211,22 @@ Bytes UnitStore::take(int unit) {
 void UnitStore::put(int unit, const Bytes& state) {
   create(unit);
   units_[unit]->deserialize(state);
+}
+
+Bytes UnitStore::copy(int unit) const {
+  auto it = units_.find(unit);
+  FE2_CHECK(it != units_.end(), "cannot copy the state of unit {}: not here", unit);
+  Bytes b;
+  it->second->serialize(b);
+  return b;
+}
+
+void UnitStore::restore(int unit, const Bytes& state) {
+  if (holds(unit)) {
+    units_.erase(unit);
+    factor_.erase(unit);
+  }
+  put(unit, state);
 }
 
 }  // namespace fe2

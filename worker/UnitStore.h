@@ -55,14 +55,19 @@ class UnitStore {
   Bytes take(int unit);
   /// Rebuilds a unit that arrives from another rank.
   void put(int unit, const Bytes& state);
+  /// A copy of a unit's state (checkpoints); the unit stays here.
+  Bytes copy(int unit) const;
+  /// Replaces a unit's state with `state` (a restart), creating the unit if it is not here.
+  void restore(int unit, const Bytes& state);
 
-  /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall]": unit K fails
+  /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall|kill]": unit K fails
   /// from step S on, wherever it lives. A malformed value is an InputError naming the
   /// variable and the value (a typo must not silently test nothing).
   struct Fault {
     int unit = -1, step = 0;
     bool fatal = false;
     bool stall = false;  ///< freeze the process (SIGSTOP): the liveness tests
+    bool kill = false;   ///< kill -9 the process: the restart tests
   };
   static Fault parse_fault(const std::string& value);
   /// The hook as set in the environment (unit -1: none).

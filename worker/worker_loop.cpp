@@ -22,6 +22,30 @@ void send_unit_fields(proto::Transport& transport, const UnitStore& store,
     }
 }
 
+void send_unit_states(proto::Transport& transport, const std::vector<proto::Move>& requests,
+                      const std::function<Bytes(int)>& copy) {
+  for (const proto::Move& m : requests)
+    if (m.from == transport.rank()) {
+      proto::UnitState s;
+      s.unit = m.unit;
+      s.state = copy(m.unit);
+      Bytes b;
+      s.pack(b);
+      transport.send(m.to, proto::Type::state, std::move(b));
+    }
+}
+
+void receive_unit_states(proto::Transport& transport, const std::vector<proto::Move>& requests,
+                         const std::function<void(int, const Bytes&)>& restore) {
+  for (const proto::Move& m : requests)
+    if (m.to == transport.rank()) {
+      const proto::UnitState s = proto::UnitState::unpack(transport.recv(proto::Type::state, m.from));
+      FE2_CHECK(s.unit == m.unit, "expected the checkpointed state of unit {} from rank {}, got unit {}",
+                m.unit, m.from, s.unit);
+      restore(s.unit, s.state);
+    }
+}
+
 void run_worker_loop(proto::Transport& transport, UnitStore& store,
                      const std::vector<int>& coordinator_of_unit, int batch) {
   PullClient client(transport, store, batch);
@@ -46,6 +70,12 @@ void run_worker_loop(proto::Transport& transport, UnitStore& store,
         break;
       }
       case proto::Command::fields: send_unit_fields(transport, store, c.moves, c.step); break;
+      case proto::Command::checkpoint:
+        send_unit_states(transport, c.moves, [&](int u) { return store.copy(u); });
+        break;
+      case proto::Command::restore:
+        receive_unit_states(transport, c.moves, [&](int u, const Bytes& b) { store.restore(u, b); });
+        break;
       case proto::Command::shutdown: transport.complete_sends(); return;
     }
   }

@@ -374,6 +374,9 @@ Schema make_run_spec_schema() {
         object(false, "results",
                {{"every", integer(1, Range::closed(1, 1e7), "write every k-th step")},
                 {"vtu", boolean(true, "write VTU/PVD for ParaView")},
+                {"checkpoint_every", integer(0, Range::closed(0, 1e7),
+                                             "write a checkpoint (checkpoint.bin) every k-th step; 0: only "
+                                             "on SIGTERM/SIGUSR1")},
                 {"units", custom("array of unit ids",
                                  "FE² units (integration point ids) whose micro fields are "
                                  "written at every output step, into units/",
