@@ -2,6 +2,7 @@
 # Checkpoint cost at the paper's unit size: six FE² units of 27,780 DOF (two cells,
 # 21^3 hexahedra, as `fe2heart bench unit`), two steps, a checkpoint after each.
 #   tools/bench_checkpoint.sh [FE2HEART] [OUT]     (default build/tools/fe2heart, /tmp/fe2_bench_ckpt)
+#   RESTART_ONLY=1 tools/bench_checkpoint.sh ...   only the restart (OUT/full from an earlier run)
 # Prints: checkpoint size (total, per unit), write time, and for a restart from the first
 # checkpoint: the time to read and place every unit's state, and the CPU of the first
 # iteration's factor rebuilds, beside the same iteration of the uninterrupted run
@@ -11,7 +12,7 @@ top=$(cd "$(dirname "$0")/.." && pwd)
 fe2=${1:-$top/build/tools/fe2heart}
 out=${2:-/tmp/fe2_bench_ckpt}
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-rm -rf "$out"
+[[ ${RESTART_ONLY:-} ]] || rm -rf "$out"; rm -rf "$out/restart"
 mkdir -p "$out"
 cat > "$out/spec.json" <<'JSON'
 {
@@ -30,7 +31,7 @@ cat > "$out/spec.json" <<'JSON'
 }
 JSON
 log() { sed 's/\x1b\[[0-9;]*m//g' "$1"; }
-mpirun -n 1 "$fe2" run "$out/spec.json" --out "$out/full" --log-level info > "$out/full.log" 2>&1
+[[ ${RESTART_ONLY:-} ]] || mpirun -n 1 "$fe2" run "$out/spec.json" --out "$out/full" --log-level info > "$out/full.log" 2>&1
 mkdir -p "$out/restart"
 cp "$out/full/checkpoint.bin.previous" "$out/restart/checkpoint.bin"
 mpirun -n 1 "$fe2" run "$out/spec.json" --out "$out/restart" --restart "$out/restart/checkpoint.bin" \

@@ -37,7 +37,8 @@ extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
 /// spec it ran against this one, and whether the run continues in its own folder.
 struct Restart {
   std::unique_ptr<CheckpointFile> file;
-  bool in_place = false;             ///< --out is the folder the checkpoint is in
+  bool in_place = false;             ///< --out is the folder the checkpoint is in: keep its files
+  bool continue_traces = false;      ///< ... and its traces are there: cut back and append
   RunResult done;                    ///< the steps behind
   TraceOffsets trace;
   std::vector<std::string> notes;    ///< for the log: newer checkpoints refused, and why
@@ -71,6 +72,9 @@ Restart open_restart(const RunOptions& o, const RunSpec& spec) {
   const auto folder = std::filesystem::path(r.file->path()).parent_path();
   r.in_place = std::filesystem::exists(o.out, ec) &&
                std::filesystem::equivalent(folder.empty() ? "." : folder, o.out, ec);
+  // The traces continue if they are there (a checkpoint copied into a new folder starts
+  // them afresh).
+  r.continue_traces = r.in_place && std::filesystem::exists(std::filesystem::path(o.out) / "trace_iterations.jsonl", ec);
   return r;
 }
 
@@ -271,7 +275,7 @@ int run(const RunOptions& o) {
     if (rank == 0) {
       output = std::make_unique<RunOutput>(o.out, spec, restart.in_place);
       unit_output = std::make_unique<UnitOutput>(o.out, spec);
-      trace = std::make_unique<Trace>(o.out, restart.in_place ? &restart.trace : nullptr);
+      trace = std::make_unique<Trace>(o.out, restart.continue_traces ? &restart.trace : nullptr);
       auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(o.out + "/fe2heart.log", true);
       spdlog::default_logger()->sinks().push_back(sink);
       // Line by line: a killed or aborted run keeps its log up to the last line.
