@@ -175,7 +175,7 @@ CheckpointWritten write_checkpoint(const std::string& path, const RunSpec& spec,
     h.run = pack_run_section(done, trace);
     file = std::make_unique<CheckpointWriter>(path, h, spec.num_points());
   }
-  points.save_states([&](int unit, const Bytes& state) { file->add_unit(unit, state); });
+  points.save_states([&](int unit, const Bytes& state) { file->add_unit(unit, state); }, spec.checkpoint_factors);
   CheckpointWritten out;
   if (file) {
     out.path = path;

@@ -293,13 +293,16 @@ std::vector<proto::UnitFields> FarmEvaluator::unit_fields(const std::vector<int>
   return out;
 }
 
-void FarmEvaluator::save_states(const StateSink& sink) {
+void FarmEvaluator::save_states(const StateSink& sink, bool with_factors) {
   proto::Control c;
   c.command = proto::Command::checkpoint;
+  c.with_factors = with_factors ? 1 : 0;
   for (size_t u = 0; u < placement_.size(); ++u) c.moves.push_back({static_cast<int>(u), placement_[u], 0});
   send_to_pure_workers(c);
   // A coordinator holds its local points and, if it works, units of the farm.
-  auto copy_here = [&](int u) { return local_->holds(u) ? local_->copy(u) : store_->copy(u); };
+  auto copy_here = [&](int u) {
+    return local_->holds(u) ? local_->copy(u, with_factors) : store_->copy(u, with_factors);
+  };
   const int me = transport_.rank();
   if (me != 0) {
     send_unit_states(transport_, c.moves, copy_here);

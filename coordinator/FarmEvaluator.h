@@ -40,7 +40,7 @@ class FarmEvaluator final : public PointEvaluator {
   std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
   /// Each holder (a pure worker by a Control 'checkpoint') sends rank 0 a copy of each
   /// of its units' states; rank 0 hands them to `sink` as they arrive.
-  void save_states(const StateSink& sink) override;
+  void save_states(const StateSink& sink, bool with_factors) override;
   /// Rank 0 sends each unit's state to its holder under the current placement (pure
   /// workers by a Control 'restore'), in `points` order.
   void restore_states(const std::vector<int>& points, const StateSource& read) override;

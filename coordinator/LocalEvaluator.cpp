@@ -36,10 +36,10 @@ std::vector<proto::UnitFields> LocalEvaluator::unit_fields(const std::vector<int
   return out;
 }
 
-void LocalEvaluator::save_states(const StateSink& sink) {
+void LocalEvaluator::save_states(const StateSink& sink, bool with_factors) {
   for (int k = 0; k < size(); ++k) {
     Bytes b;
-    points_[k]->serialize(b);
+    points_[k]->serialize_for_checkpoint(b, with_factors);
     sink(k, b);
   }
 }

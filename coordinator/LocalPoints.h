@@ -43,7 +43,7 @@ class LocalPoints {
   void commit() { store_.commit(); }
   void rollback() { store_.rollback(); }
   /// Checkpoints and restarts: a point's whole state, as a worker's store copies it.
-  Bytes copy(int unit) const { return store_.copy(unit); }
+  Bytes copy(int unit, bool with_factor = false) const { return store_.copy(unit, with_factor); }
   void restore(int unit, const Bytes& state) { store_.restore(unit, state); }
 
  private:

@@ -27,9 +27,10 @@ class PointEvaluator {
 
   /// Checkpoints: a copy of every point's state (its whole history) goes to `sink` on the
   /// first coordinator, each point once, in no fixed order. At a step boundary (after
-  /// commit_step). @note Collective on the coordinator group.
+  /// commit_step). `with_factors`: points store their factors where they can
+  /// (output.checkpoint_factors). @note Collective on the coordinator group.
   using StateSink = std::function<void(int point, const Bytes& state)>;
-  virtual void save_states(const StateSink& sink) = 0;
+  virtual void save_states(const StateSink& sink, bool with_factors) = 0;
   /// Restarts: replaces the state of each point of `points` (every point once; significant
   /// on the first coordinator) with `read(point)`, which is called there in that order.
   /// Before the first evaluate. @note Collective on the coordinator group.
@@ -47,7 +48,7 @@ class LocalEvaluator final : public PointEvaluator {
   void commit_step() override;
   void rollback_step() override;
   std::vector<proto::UnitFields> unit_fields(const std::vector<int>& units, int step) override;
-  void save_states(const StateSink& sink) override;
+  void save_states(const StateSink& sink, bool with_factors) override;
   void restore_states(const std::vector<int>& points, const StateSource& read) override;
   PointModel& point(int k) { return *points_[k]; }
   int size() const { return static_cast<int>(points_.size()); }

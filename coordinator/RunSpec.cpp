@@ -527,6 +527,8 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   spec.checkpoint_every = out.integer("checkpoint_every", 0, Range::closed(0, 1e7),
                                       "write a checkpoint (checkpoint.bin) every k-th step; 0: only on "
                                       "SIGTERM/SIGUSR1");
+  spec.checkpoint_factors = out.boolean("checkpoint_factors", false,
+                                        "store each FE² unit's numeric factor in the checkpoint");
   out.finish();
   root.finish();
   const std::string canonical = j.dump();

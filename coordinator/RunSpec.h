@@ -120,6 +120,7 @@ struct RunSpec {
   std::vector<int> coupled_cavities;
   int output_every = 1;
   int checkpoint_every = 0;       ///< output.checkpoint_every (0: only on a signal)
+  bool checkpoint_factors = false;  ///< output.checkpoint_factors: units' numeric factors in the checkpoint
   bool write_vtu = true;
   /// output.units: points (FE² units) whose micro fields are written at output steps.
   std::vector<int> output_units;

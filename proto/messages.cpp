@@ -169,6 +169,7 @@ void Control::pack(Bytes& out) const {
   w.put(time);
   w.put(dt);
   w.put_array(moves.data(), moves.size());
+  w.put(with_factors);
 }
 
 Control Control::unpack(const Bytes& in) {
@@ -183,7 +184,10 @@ Control Control::unpack(const Bytes& in) {
   c.time = r.get<double>();
   c.dt = r.get<double>();
   c.moves = r.get_array<Move>();
+  c.with_factors = r.get<uint8_t>();
   finish(r);
+  if (c.with_factors > 1)
+    throw Error(fmt::format("Control message: with_factors {}, expected 0 or 1", c.with_factors));
   for (const Move& m : c.moves)
     if (m.unit < 0 || m.from < 0 || m.to < 0)
       throw Error(fmt::format("Control message: invalid move of unit {} from {} to {}", m.unit,

@@ -5,7 +5,7 @@
 //   header   u16 protocol version | u16 message type
 //   Hello    u64 spec hash | i32 rank | i32 ranks
 //   Control  u8 command | i32 step | i32 iteration | f64 time | f64 dt |
-//            u64 n moves | n × (i32 unit, i32 from, i32 to)
+//            u64 n moves | n × (i32 unit, i32 from, i32 to) | u8 with_factors
 //   Pull     i32 worker | i32 max_jobs | u64 n | n × JobOutput   (results + next request)
 //   Batch    u8 done | u64 n | n × JobInput
 //   Stats    WorkerStats (fixed-size record)
@@ -75,6 +75,8 @@ struct Control {
   int32_t step = 0, iteration = 0;
   double time = 0.0, dt = 0.0;
   std::vector<Move> moves;  ///< rebalance (units to move) and fields (units to report)
+  /// checkpoint: the states carry the units' numeric factors (output.checkpoint_factors); 0 or 1
+  uint8_t with_factors = 0;
   void pack(Bytes& out) const;
   static Control unpack(const Bytes& in);
 };

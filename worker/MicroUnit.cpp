@@ -17,7 +17,9 @@ constexpr double kSolveFloorFactor = 1.0;
 }  // namespace
 
 namespace {
-constexpr uint32_t kStateVersion = 3;  // 3: point history
+constexpr uint32_t kStateVersion = 4;  // 4: factor record (flag, then the factor); 3: point history
+constexpr uint8_t kRebuildFactor = 0;  ///< the factor is rebuilt from K_factored_ when needed
+constexpr uint8_t kStoredFactor = 1;   ///< the numeric factor follows (SparseFactor::save)
 
 bool all_finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
 }  // namespace
@@ -162,6 +164,7 @@ size_t MicroUnit::state_bytes() const {
   b += 3 * d + sizeof(int);                               // policy, refreshes
   b += 3 * d + sizeof(int) + 1;                           // committed policy, refreshes
   b += 2 * (len + history_.size() * d);                   // history, committed history
+  b += 1;                                                 // factor record: the rebuild flag
   if (refreshed_since_commit_)
     b += (len + committed_factor_.K_factored.size() * d) + (len + 9 * n * d) + 1;
   return b;
@@ -379,7 +382,7 @@ void MicroUnit::rollback_step() {
   }
 }
 
-void MicroUnit::serialize(Bytes& out) const {
+void MicroUnit::serialize_for_checkpoint(Bytes& out, bool with_factor) const {
   ByteWriter b(out);
   b.put_string(kind());
   b.put(kStateVersion);
@@ -406,14 +409,19 @@ void MicroUnit::serialize(Bytes& out) const {
   }
   b.put_array(history_.data(), history_.size());
   b.put_array(history_committed_.data(), history_committed_.size());
+  // The factor goes along only if asked, present and savable; it is the factor of
+  // K_factored_ (checkpoints are taken at step boundaries, after commit).
+  const bool store = with_factor && factor_ && factor_->ready() && factor_->savable() && !K_factored_.empty();
+  b.put<uint8_t>(store ? kStoredFactor : kRebuildFactor);
+  if (store) factor_->save(b);
 }
 
 void MicroUnit::deserialize(const Bytes& in) {
   ByteReader b(in, "micro unit state");
   if (b.get_string() != kind()) throw Error("micro unit state: not a micro unit");
   const auto version = b.get<uint32_t>();
-  if (version != kStateVersion)
-    throw Error(fmt::format("micro unit state: version {}, expected {} (a state written by "
+  if (version != kStateVersion && version != 3)  // 3: as 4, without the factor record
+    throw Error(fmt::format("micro unit state: version {}, expected 3 or {} (a state written by "
                             "another build of fe2heart)",
                             version, kStateVersion));
   if (b.get<uint64_t>() != model_->fingerprint())
@@ -447,10 +455,20 @@ void MicroUnit::deserialize(const Bytes& in) {
   }
   b.get_array_into(history_.data(), history_.size());
   b.get_array_into(history_committed_.data(), history_committed_.size());
-  if (!b.at_end()) throw Error("micro unit state: trailing bytes");
-  // The factor is rebuilt from K_factored_ only if the next job reuses it: a unit
-  // migrated at a refresh boundary costs no extra factorization.
+  // Without a stored factor, it is rebuilt from K_factored_ only if the next job reuses
+  // it: a unit migrated at a refresh boundary costs no extra factorization.
   factor_.reset();
+  const uint8_t record = version >= 4 ? b.get<uint8_t>() : kRebuildFactor;
+  if (record == kStoredFactor) {
+    if (K_factored_.empty()) throw Error("micro unit state: a stored factor without the matrix it was made of");
+    auto factor = model_->make_factor(factor_kind_);
+    factor->load(b, model_->pattern());  // checked against K's pattern, not refactored
+    factor_ = std::move(factor);
+  } else if (record != kRebuildFactor) {
+    throw Error(fmt::format("micro unit state: factor record {}, expected {} (rebuild) or {} (stored)", record,
+                            kRebuildFactor, kStoredFactor));
+  }
+  if (!b.at_end()) throw Error("micro unit state: trailing bytes");
 }
 
 }  // namespace fe2

@@ -41,8 +41,11 @@ class MicroUnit final : public PointModel {
   proto::JobOutput iterate(const proto::JobInput& in) override;
   void commit_step() override;
   void rollback_step() override;
-  void serialize(Bytes& out) const override;
+  void serialize(Bytes& out) const override { serialize_for_checkpoint(out, false); }
   void deserialize(const Bytes& in) override;
+  /// With `with_factor`, a CHOLMOD factor is stored (SparseFactor::save); UMFPACK, MUMPS
+  /// or a dropped factor store the rebuild flag, as without it.
+  void serialize_for_checkpoint(Bytes& out, bool with_factor) const override;
   std::string kind() const override { return "micro_unit"; }
   bool next_refresh(int step, int iteration) const override;
   size_t state_bytes() const override;

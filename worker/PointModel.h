@@ -24,6 +24,13 @@ class PointModel {
   /// Whole state to bytes and back (migration between ranks, checkpoints).
   virtual void serialize(Bytes& out) const = 0;
   virtual void deserialize(const Bytes& in) = 0;
+  /// serialize() for a checkpoint: with `with_factor` (output.checkpoint_factors) a point
+  /// that holds a factor it can write out also stores it, and deserialize() takes it back
+  /// instead of refactoring. Migration never sends factors (16× the bytes of the matrix).
+  virtual void serialize_for_checkpoint(Bytes& out, bool with_factor) const {
+    (void)with_factor;
+    serialize(out);
+  }
   virtual std::string kind() const = 0;
 
   /// Whether the next job, if it is (step, iteration) and not forced, refactors: the

@@ -1,6 +1,7 @@
 #include "worker/SparseFactor.h"
 
 #include "common/error.h"
+#include "worker/cholmod_factor_io.h"
 
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
@@ -67,6 +68,21 @@ class CholmodFactor final : public SparseFactor {
   double solve_flops() const override { return 4.0 * c_.lnz; }
   double factor_bytes() const override {
     return L_ ? static_cast<double>(L_->xsize) * sizeof(double) : 0.0;
+  }
+
+  bool savable() const override { return true; }
+  void save(ByteWriter& w) const override {
+    FE2_CHECK(ready_, "save before factorize");
+    write_cholmod_factor(w, *L_, {c_.fl, c_.lnz});
+  }
+  void load(ByteReader& r, const SparseMatrix& K) override {
+    CholmodCounts counts;
+    cholmod_factor* L = read_cholmod_factor(r, K, c_, counts);
+    if (L_) cholmod_free_factor(&L_, &c_);
+    L_ = L;
+    c_.fl = counts.fl;  // as cholmod_analyze left them for this factor
+    c_.lnz = counts.lnz;
+    ready_ = true;
   }
 
  private:
@@ -168,6 +184,14 @@ class UmfpackFactor final : public SparseFactor {
 };
 
 }  // namespace
+
+void SparseFactor::save(ByteWriter&) const {
+  throw Error(fmt::format("{}: this factor cannot be saved (it is rebuilt from its matrix)", name()));
+}
+
+void SparseFactor::load(ByteReader&, const SparseMatrix&) {
+  throw Error(fmt::format("{}: this factor cannot be loaded (it is rebuilt from its matrix)", name()));
+}
 
 std::unique_ptr<SparseFactor> make_sparse_factor(FactorKind kind) {
   if (kind == FactorKind::cholesky) return std::make_unique<CholmodFactor>();

@@ -4,6 +4,8 @@
 // next one. Two backends: CHOLMOD supernodal LLᵀ (K symmetric positive definite; the
 // paper's choice even in systole) and UMFPACK LU (any K). Every library status is
 // checked and reported with the library's own code.
+#include "common/bytes.h"
+
 #include <Eigen/Sparse>
 
 #include <memory>
@@ -30,6 +32,18 @@ class SparseFactor {
   virtual double factor_flops() const = 0;
   virtual double solve_flops() const = 0;
   bool ready() const { return ready_; }
+
+  /// Checkpoints that carry factors (output.checkpoint_factors): whether this backend can
+  /// write its numeric factor out and read it back (CHOLMOD LLᵀ; not UMFPACK's opaque
+  /// Numeric object nor MUMPS, whose owners rebuild them from K instead).
+  virtual bool savable() const { return false; }
+  /// Writes the factor (ready() and savable() only).
+  virtual void save(ByteWriter& w) const;
+  /// Reads a factor save() wrote, of a matrix with K's pattern, in place of factorizing.
+  /// Every field is checked against n and K's pattern before use: a damaged record is an
+  /// fe2::Error, never a crash. Afterwards factor_flops/solve_flops are those of the
+  /// saved factor's analysis, so a cost model reading them sees no difference.
+  virtual void load(ByteReader& r, const SparseMatrix& K);
 
  protected:
   bool ready_ = false;

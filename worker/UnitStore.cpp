@@ -213,11 +213,11 @@ void UnitStore::put(int unit, const Bytes& state) {
   units_[unit]->deserialize(state);
 }
 
-Bytes UnitStore::copy(int unit) const {
+Bytes UnitStore::copy(int unit, bool with_factor) const {
   auto it = units_.find(unit);
   FE2_CHECK(it != units_.end(), "cannot copy the state of unit {}: not here", unit);
   Bytes b;
-  it->second->serialize(b);
+  it->second->serialize_for_checkpoint(b, with_factor);
   return b;
 }
 
@@ -227,6 +227,8 @@ void UnitStore::restore(int unit, const Bytes& state) {
     factor_.erase(unit);
   }
   put(unit, state);
+  // A restart's rebuild is counted (summary.factor_memory.rebuilds) like the budget's.
+  factor_[unit].dropped = units_[unit]->factor_bytes() == 0;
 }
 
 }  // namespace fe2

@@ -55,9 +55,12 @@ class UnitStore {
   Bytes take(int unit);
   /// Rebuilds a unit that arrives from another rank.
   void put(int unit, const Bytes& state);
-  /// A copy of a unit's state (checkpoints); the unit stays here.
-  Bytes copy(int unit) const;
+  /// A copy of a unit's state (checkpoints; with its factor if `with_factor`, see
+  /// PointModel::serialize_for_checkpoint); the unit stays here.
+  Bytes copy(int unit, bool with_factor = false) const;
   /// Replaces a unit's state with `state` (a restart), creating the unit if it is not here.
+  /// A unit restored without its factor counts the rebuild of its next job in
+  /// factor_counts(), as one dropped by the budget does.
   void restore(int unit, const Bytes& state);
 
   /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall|kill]": unit K fails

@@ -71,7 +71,7 @@ void run_worker_loop(proto::Transport& transport, UnitStore& store,
       }
       case proto::Command::fields: send_unit_fields(transport, store, c.moves, c.step); break;
       case proto::Command::checkpoint:
-        send_unit_states(transport, c.moves, [&](int u) { return store.copy(u); });
+        send_unit_states(transport, c.moves, [&](int u) { return store.copy(u, c.with_factors != 0); });
         break;
       case proto::Command::restore:
         receive_unit_states(transport, c.moves, [&](int u, const Bytes& b) { store.restore(u, b); });

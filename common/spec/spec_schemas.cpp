@@ -377,6 +377,11 @@ Schema make_run_spec_schema() {
                 {"checkpoint_every", integer(0, Range::closed(0, 1e7),
                                              "write a checkpoint (checkpoint.bin) every k-th step; 0: only "
                                              "on SIGTERM/SIGUSR1")},
+                {"checkpoint_factors",
+                 boolean(false, "store each FE² unit's numeric factor in the checkpoint, so that a "
+                                "restart does not refactor (CHOLMOD LLᵀ units; UMFPACK LU, MUMPS "
+                                "and dropped factors are rebuilt from their matrix as without it); "
+                                "the checkpoint grows by the factors' size")},
                 {"units", custom("array of unit ids",
                                  "FE² units (integration point ids) whose micro fields are "
                                  "written at every output step, into units/",

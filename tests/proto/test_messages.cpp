@@ -106,6 +106,16 @@ TEST(Messages, ControlStatsStateHelloRoundTrip) {
   Bytes bad = b1;
   bad[4] = std::byte{9};  // command out of range
   EXPECT_THROW(Control::unpack(bad), Error);
+  // A checkpoint that asks for the units' factors says so in its last byte.
+  c.command = Command::checkpoint;
+  c.with_factors = 1;
+  Bytes bf;
+  c.pack(bf);
+  EXPECT_EQ(bf.size(), b1.size());
+  EXPECT_EQ(Control::unpack(bf).with_factors, 1);
+  EXPECT_EQ(Control::unpack(b1).with_factors, 0);
+  bf.back() = std::byte{2};
+  EXPECT_THROW(Control::unpack(bf), Error);
 
   WorkerStats s;
   s.worker = 1;
