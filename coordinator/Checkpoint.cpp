@@ -85,6 +85,7 @@ void put_record(ByteWriter& w, const StepRecord& s) {
   w.put<int32_t>(s.factor_rebuilds);
   w.put(s.factor_rebuild_cpu_seconds);
   w.put<int32_t>(s.forced_refreshes);
+  w.put<int32_t>(s.collective_refreshes);
   w.put(s.wall_seconds);
   w.put(s.micro_cpu_seconds);
   put_vector(w, s.cavity_volumes);
@@ -111,6 +112,7 @@ StepRecord get_record(ByteReader& r) {
   s.factor_rebuilds = r.get<int32_t>();
   s.factor_rebuild_cpu_seconds = r.get<double>();
   s.forced_refreshes = r.get<int32_t>();
+  s.collective_refreshes = r.get<int32_t>();
   s.wall_seconds = r.get<double>();
   s.micro_cpu_seconds = r.get<double>();
   s.cavity_volumes = r.get_array<double>();

@@ -185,7 +185,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["probes"] = probes;
   s["time"] = r.history.empty() ? 0.0 : r.history.back().time;
   json hist = json::array();
-  int gmres = 0, refreshes = 0, forced_refreshes = 0;
+  int gmres = 0, refreshes = 0, forced_refreshes = 0, collective_refreshes = 0;
   double micro_cpu = 0.0;
   int evictions = 0, rebuilds = 0;
   double rebuild_cpu = 0.0;
@@ -200,6 +200,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                     {"gmres_iterations", h.gmres_iterations},
                     {"refreshes", h.refreshes},
                     {"forced_refreshes", h.forced_refreshes},
+                    {"collective_refreshes", h.collective_refreshes},
                     {"wall_seconds", h.wall_seconds}});
     if (!h.cavity_volumes.empty()) {
       json cav = json::object();
@@ -238,6 +239,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
     gmres += h.gmres_iterations;
     refreshes += h.refreshes;
     forced_refreshes += h.forced_refreshes;
+    collective_refreshes += h.collective_refreshes;
     micro_cpu += h.micro_cpu_seconds;
     evictions += h.factor_evictions;
     rebuilds += h.factor_rebuilds;
@@ -312,6 +314,7 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   s["gmres_iterations"] = gmres;
   s["refreshes"] = refreshes;
   s["forced_refreshes"] = forced_refreshes;  // iterations all units refactored because Newton stalled
+  s["collective_refreshes"] = collective_refreshes;  // refresh "collective": iterations × models refactored together
   s["micro_cpu_seconds"] = micro_cpu;
   // farm.factor_memory_budget: how often ranks dropped a unit's factor to stay within it,
   // and how often (and at what CPU cost) a dropped factor was rebuilt on a later job.

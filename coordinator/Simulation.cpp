@@ -27,6 +27,15 @@ std::vector<int> all_elements(const TetMesh& m) {
   return v;
 }
 
+/// Per point model: whether its units refresh collectively (unit.solver.refresh).
+std::vector<bool> collective_models(const RunSpec& spec) {
+  std::vector<bool> c;
+  for (const auto& m : spec.models)
+    c.push_back(m.kind == PointModelSpec::Kind::fe2 && m.plan &&
+                m.plan->options.refresh == MicroSolverOptions::Refresh::collective);
+  return c;
+}
+
 Eigen::VectorXd gather(const Eigen::VectorXd& x, const std::vector<int>& dofs) {
   Eigen::VectorXd v(dofs.size());
   for (size_t k = 0; k < dofs.size(); ++k) v[k] = x[dofs[k]];
@@ -48,7 +57,8 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
       points_(spec.mesh, spec.formulation.quadrature_degree),
       owned_points_(points_.points_of(owned_elements_)),
       system_(spec, spec.formulation.mixed),
-      macro_solver_(group_, system_.num_free(), spec.macro_solver) {
+      macro_solver_(group_, system_.num_free(), spec.macro_solver),
+      collective_(spec.model_of_points(), collective_models(spec)) {
   FE2_CHECK(points_.points_per_element() == spec.points_per_element,
             "{} points per element, the spec counted {}", points_.points_per_element(),
             spec.points_per_element);
@@ -225,7 +235,7 @@ void Simulation::evaluate_points(int step, int iteration, double t_new, double d
       job.time = t_new;
       job.dt = dt;
       job.apply_update = iteration > 1;
-      job.force_refresh = force_refresh_ ? 1 : 0;
+      job.force_refresh = force_refresh_ || collective_.due(k) ? 1 : 0;
       job.Zbar = R_[k] * Zbar;  // Z̄_μ = QᵀZ̄Q
       job.Zbar_dot = R_[k] * Zdot;
       job.Zbar_dot_coefficient = Zdot_coefficient;
@@ -413,6 +423,10 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
       // (allreduced) residuals, so they decide alike.
       const bool forced_now = force_refresh_;
       force_refresh_ = false;
+      if (collective_.active()) {
+        rec.collective_refreshes += forced_now ? 0 : collective_.due_models();
+        collective_.account(results_, forced_now, [&](int64_t* v, int n) { group_.allreduce_sum(v, n); });
+      }
       if (!converged && !forced_now && it >= 3 && measure > kStallRatio * previous_measure) {
         force_refresh_ = true;
         ++rec.forced_refreshes;
@@ -443,6 +457,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
 
 void Simulation::commit(double t_new, double dt) {
   evaluator_.commit_step();
+  collective_.commit();
   const MacroState s = state(t_new, dt);
   for (auto& term : terms_) term->commit(s);
   Zbar_n_ = Zbar_;
@@ -454,6 +469,7 @@ void Simulation::commit(double t_new, double dt) {
 
 void Simulation::rollback() {
   evaluator_.rollback_step();
+  collective_.rollback();
   for (auto& term : terms_) term->rollback();
   Zbar_ = Zbar_n_;
   x_ = x_n_;
@@ -491,6 +507,7 @@ void Simulation::save_state(ByteWriter& w) {
     w.put_string(term->name());
     term->save(w);
   }
+  collective_.save(w);
   macro_solver_.drop_factor();
 }
 
@@ -508,6 +525,7 @@ void Simulation::restore_state(ByteReader& r) {
       throw InputError(fmt::format("{}: macro term '{}' where this run has '{}'", r.what(), name, term->name()));
     term->restore(r);
   }
+  collective_.restore(r);
   x_ = x_n_;
   v_ = v_n_;
   a_ = a_n_;

@@ -12,6 +12,7 @@
 // Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
 // NaN, inverted element, iteration cap) is rolled back and cut in half, up to
 // newton.max_cutbacks times; then the run stops, saying where and why.
+#include "coordinator/CollectiveRefresh.h"
 #include "coordinator/MacroPoints.h"
 #include "coordinator/MacroSystem.h"
 #include "coordinator/MacroTerm.h"
@@ -52,6 +53,7 @@ struct StepRecord {
   int factor_rebuilds = 0;            ///< ... and rebuilt on a later job
   double factor_rebuild_cpu_seconds = 0.0;  ///< CPU of those rebuilds (in micro_cpu_seconds)
   int forced_refreshes = 0;           ///< iterations whose units all refactored because Newton stalled
+  int collective_refreshes = 0;       ///< refresh "collective": iterations × models whose units all refactored
   double wall_seconds = 0.0;
   double micro_cpu_seconds = 0.0;
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
@@ -198,6 +200,8 @@ class Simulation {
   /// The next iteration's jobs refactor every unit whatever its policy: set when the
   /// coupled Newton stopped contracting with kept factors (stale χ, stale A_hom).
   bool force_refresh_ = false;
+  /// unit.solver.refresh "collective": when all units of a model refactor together.
+  CollectiveRefresh collective_;
   std::vector<proto::JobOutput> results_;
   std::vector<double> values_;         ///< S̄ triplet values
   std::vector<double> du_;             ///< Newton correction on the free equations

@@ -99,6 +99,12 @@ void Group::allreduce_sum(double* v, int n) const {
   wait_alive(q, "collective Allreduce(sum)", kIndirectPatience);
 }
 
+void Group::allreduce_sum(int64_t* v, int n) const {
+  MPI_Request q;
+  check_mpi(MPI_Iallreduce(MPI_IN_PLACE, v, n, MPI_INT64_T, MPI_SUM, comm_, &q), "Iallreduce(sum)");
+  wait_alive(q, "collective Allreduce(sum)", kIndirectPatience);
+}
+
 double Group::allreduce_max(double x) const {
   MPI_Request q;
   check_mpi(MPI_Iallreduce(MPI_IN_PLACE, &x, 1, MPI_DOUBLE, MPI_MAX, comm_, &q), "Iallreduce(max)");

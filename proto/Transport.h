@@ -50,6 +50,8 @@ class Group {
   MPI_Comm raw() const { return comm_; }
 
   void allreduce_sum(double* v, int n) const;
+  /// Exact, so the result does not depend on how the terms are spread over ranks.
+  void allreduce_sum(int64_t* v, int n) const;
   double allreduce_max(double x) const;
   int allreduce_max(int x) const;
   void reduce_sum(double* v, int n, int root) const;

@@ -104,6 +104,8 @@ void pack_result(ByteWriter& w, const JobOutput& o) {
   w.put(o.active_tension);
   w.put(o.factor_evictions);
   w.put(o.factor_rebuilt);
+  w.put(o.excess_flops);
+  w.put(o.refresh_flops);
   w.put(o.failed);
   w.put_string(o.message);
 }
@@ -130,11 +132,16 @@ JobOutput unpack_result(ByteReader& r) {
   o.active_tension = r.get<double>();
   o.factor_evictions = r.get<int32_t>();
   o.factor_rebuilt = r.get<uint8_t>();
+  o.excess_flops = r.get<double>();
+  o.refresh_flops = r.get<double>();
   o.failed = r.get<uint8_t>();
   o.message = r.get_string();
   if (o.unit < 0) throw Error(fmt::format("{}: result for unit {}", r.what(), o.unit));
   if (o.next_refresh > all_next_jobs)
     throw Error(fmt::format("{}: next-refresh bits {} out of range", r.what(), o.next_refresh));
+  if (!(o.excess_flops >= 0 && o.excess_flops < 1e30) || !(o.refresh_flops >= 0 && o.refresh_flops < 1e30))
+    throw Error(fmt::format("{}: excess flops {}, refresh flops {}: expected finite and >= 0", r.what(),
+                            o.excess_flops, o.refresh_flops));
   if (o.factor_evictions < 0 || o.factor_rebuilt > 1)
     throw Error(fmt::format("{}: factor evictions {}, rebuilt flag {} out of range", r.what(),
                             o.factor_evictions, o.factor_rebuilt));

@@ -19,7 +19,8 @@
 //   JobOutput = i32 unit | 81 f64 𝔸_hom | 9 f64 P̃ | 9 f64 P̄ | f64 r_norm, r_ref, r_floor |
 //               i32 gmres | u8 kind | 4 f64 cpu (job, assembly, refresh, solve) |
 //               u8 next_refresh | u64 state_bytes | f64 T_a | i32 factor_evictions |
-//               u8 factor_rebuilt | u8 status | message string       (kJobOutputBytes + text)
+//               u8 factor_rebuilt | f64 excess_flops, refresh_flops | u8 status |
+//               message string                                    (kJobOutputBytes + text)
 //   JobCost   = i32 unit | u8 kind | i32 gmres | f64 cpu, cpu_refresh | u8 next_refresh |
 //               u64 state_bytes | i32 factor_evictions | u8 factor_rebuilt | u8 failed
 //                                                                   (kJobCostBytes)
@@ -43,7 +44,7 @@ const char* name_of(Type t);
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
 constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
-constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 3) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 1;
+constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 3) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 2 * 8 + 1;
 constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 4 + 1 + 1;
 
 /// Reads and checks the header; throws fe2::Error naming both versions on mismatch.

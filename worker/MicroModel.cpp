@@ -22,14 +22,16 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.factorization = f == "cholesky" ? Factorization::cholesky
                     : f == "lu"     ? Factorization::lu
                                     : Factorization::automatic;
-  const std::string r = s.choice("refresh", "fixed", {"every_iteration", "fixed", "adaptive"},
+  const std::string r = s.choice("refresh", "fixed", {"every_iteration", "fixed", "adaptive", "collective"},
                                  "when to refactor K and recompute χ: every Newton iteration; "
-                                 "at iteration 1 of every N_t-th step (paper Fig. 6); or when "
+                                 "at iteration 1 of every N_t-th step (paper Fig. 6); when "
                                  "the extra GMRES work since the last refresh has cost as "
-                                 "much as a refresh");
+                                 "much as a refresh (adaptive: each unit alone; collective: "
+                                 "the coordinators, for all units of this model at once)");
   o.refresh = r == "every_iteration" ? Refresh::every_iteration
               : r == "fixed"         ? Refresh::fixed
-                                     : Refresh::adaptive;
+              : r == "adaptive"      ? Refresh::adaptive
+                                     : Refresh::collective;
   o.N_t = s.integer("N_t", 10, Range::closed(1, 1e6), "refresh period in steps (fixed policy)");
   o.step4 = s.boolean("step4", true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves");
   o.gmres_rtol = s.number("gmres_rtol", 1e-10, Range{0.0, 1.0, true, true},

@@ -24,7 +24,7 @@ namespace fe2 {
 /// How a unit keeps its factor of K and its characteristic modes χ (paper Fig. 6).
 struct MicroSolverOptions {
   enum class Factorization { cholesky, lu, automatic };
-  enum class Refresh { every_iteration, fixed, adaptive };
+  enum class Refresh { every_iteration, fixed, adaptive, collective };
   Factorization factorization = Factorization::automatic;
   Refresh refresh = Refresh::fixed;
   int N_t = 10;              ///< fixed policy: refresh at iteration 1 of every N_t-th step

@@ -346,6 +346,8 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   out.r_floor = residual_floor();
   out.gmres_iterations = res.iterations;
   out.kind = refreshed ? proto::Refresh::refresh : proto::Refresh::reuse;
+  out.excess_flops = refreshed ? 0.0 : policy_.excess_flops(res.iterations);
+  out.refresh_flops = policy_.refresh_flops();
   out.cpu_seconds = thread_cpu_seconds() - t_start;
   return out;
 }

@@ -16,6 +16,7 @@ bool RefreshPolicy::due(int step, int iteration) const {
     case Kind::every_iteration: return true;
     case Kind::fixed: return iteration == 1 && step % N_t_ == 0;
     case Kind::adaptive: return excess_iterations_ * iteration_flops() >= refresh_flops();
+    case Kind::collective: return false;  // the job's force flag carries the coordinators' decision
   }
   return true;
 }

@@ -11,6 +11,11 @@
 //                      Σ_jobs max(0, k_j − 1) · (solve + matvec),
 //                    has cost as much as the refresh it avoids, factor + 9 solves (χ).
 //                    Flop counts, not seconds: the same decision on every rank and run.
+//   collective       the same rental, decided by the coordinators for all units of a model
+//                    at once (coordinator/CollectiveRefresh.h): the unit never refreshes on
+//                    its own and reports each job's excess and its refresh cost instead. With
+//                    one unit per worker a unit refreshing alone stalls every other worker
+//                    for a factorization; refreshing together costs the farm one.
 //
 // A forced refresh (job flag) and a unit without a factor refresh regardless; that is
 // MicroUnit's business, not the policy's.
@@ -35,6 +40,10 @@ class RefreshPolicy {
   void reused(int gmres_iterations);
 
   Kind kind() const { return kind_; }
+  /// Flops of the GMRES work beyond one iteration in a job that took `gmres_iterations`.
+  double excess_flops(int gmres_iterations) const {
+    return (gmres_iterations > 1 ? gmres_iterations - 1 : 0) * iteration_flops();
+  }
   /// Adaptive: GMRES iterations beyond one per job since the last refresh.
   double excess_iterations() const { return excess_iterations_; }
   /// Adaptive cost model (flops): one more GMRES iteration, and one refresh.

@@ -114,10 +114,12 @@ Schema micro_unit() {
                             "factor of K: CHOLMOD LLᵀ, UMFPACK LU, or LLᵀ while K is symmetric "
                             "positive definite and LU otherwise")},
                     {"refresh",
-                     choice("fixed", {"every_iteration", "fixed", "adaptive"},
+                     choice("fixed", {"every_iteration", "fixed", "adaptive", "collective"},
                             "when to refactor K and recompute χ: every Newton iteration; at "
-                            "iteration 1 of every N_t-th step (paper Fig. 6); or when the extra "
-                            "GMRES work since the last refresh has cost as much as a refresh")},
+                            "iteration 1 of every N_t-th step (paper Fig. 6); when the extra "
+                            "GMRES work since the last refresh has cost as much as a refresh "
+                            "(adaptive: each unit alone; collective: the coordinators, for all "
+                            "units of this model at once)")},
                     {"N_t", integer(10, Range::closed(1, 1e6),
                                     "refresh period in steps (fixed policy)")},
                     {"step4", boolean(true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves")},

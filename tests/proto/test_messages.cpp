@@ -34,6 +34,8 @@ JobOutput some_result(int unit) {
   o.active_tension = 4.5e4 + unit;
   o.factor_evictions = 2 + unit;
   o.factor_rebuilt = 1;
+  o.excess_flops = 3.5e8 * (unit + 1);
+  o.refresh_flops = 6.7e10 + unit;
   o.failed = 1;
   o.message = "did not converge";
   return o;
@@ -89,6 +91,8 @@ TEST(Messages, PullCarriesResultsExactly) {
   EXPECT_EQ(back.results[1].active_tension, p.results[1].active_tension);
   EXPECT_EQ(back.results[1].factor_evictions, 9);
   EXPECT_EQ(back.results[0].factor_rebuilt, 1);
+  EXPECT_EQ(back.results[1].excess_flops, p.results[1].excess_flops);
+  EXPECT_EQ(back.results[1].refresh_flops, p.results[1].refresh_flops);
   EXPECT_EQ(back.max_jobs, 3);
   expect_rejects_corruption<Pull>(bytes);
 }
