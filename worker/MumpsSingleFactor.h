@@ -1,6 +1,6 @@
 #pragma once
 // A single-precision factor of the unit matrix K (issue #11, the cost side): MUMPS
-// smumps on one process (MPI_COMM_SELF), symmetric LDLᵀ when K is symmetric and LU
+// smumps on one process (MPI_COMM_SELF), LDLᵀ without pivoting for the LLᵀ kind (K SPD) and LU
 // otherwise, optionally with block low-rank compression. It is only ever used as the
 // GMRES preconditioner (and first guess of χ): residuals, Krylov vectors and the
 // answer stay double, so the converged unit answer is the double-factor one to the
@@ -11,7 +11,7 @@
 
 namespace fe2 {
 
-/// `symmetric`: K is symmetric (its upper triangle is passed, SYM = 2); otherwise LU
+/// `symmetric`: K is symmetric positive definite (its upper triangle is passed, SYM = 1); otherwise LU
 /// (SYM = 0). `blr_tolerance` > 0 turns on block low-rank factor and solve (ICNTL(35) =
 /// 2) with that dropping threshold (CNTL(7)); 0 is the plain full-rank factor.
 std::unique_ptr<SparseFactor> make_mumps_single_factor(bool symmetric, double blr_tolerance);
