@@ -606,7 +606,8 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     result.steps = step + 1;
     result.history.push_back(rec);
     if (on_step) on_step(rec);
-    if (stop_requested_) {
+    // A stop requested in the last step finds the run complete: nothing is left to continue.
+    if (stop_requested_ && step + 1 < spec_.steps) {
       result.stopped = true;
       break;
     }
