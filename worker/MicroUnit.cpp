@@ -20,6 +20,9 @@ namespace {
 constexpr uint32_t kStateVersion = 4;  // 4: factor record (flag, then the factor); 3: point history
 constexpr uint8_t kRebuildFactor = 0;  ///< the factor is rebuilt from K_factored_ when needed
 constexpr uint8_t kStoredFactor = 1;   ///< the numeric factor follows (SparseFactor::save)
+/// Larger factors are not stored: a unit's state travels to rank 0 in one MPI message,
+/// whose count is an int (2 GiB).
+constexpr double kMaxStoredFactorBytes = 1.5e9;
 
 bool all_finite(const Eigen::Ref<const Eigen::MatrixXd>& m) { return m.allFinite(); }
 }  // namespace
@@ -413,7 +416,8 @@ void MicroUnit::serialize_for_checkpoint(Bytes& out, bool with_factor) const {
   b.put_array(history_committed_.data(), history_committed_.size());
   // The factor goes along only if asked, present and savable; it is the factor of
   // K_factored_ (checkpoints are taken at step boundaries, after commit).
-  const bool store = with_factor && factor_ && factor_->ready() && factor_->savable() && !K_factored_.empty();
+  const bool store = with_factor && factor_ && factor_->ready() && factor_->savable() && !K_factored_.empty() &&
+                     factor_->factor_bytes() <= kMaxStoredFactorBytes;
   b.put<uint8_t>(store ? kStoredFactor : kRebuildFactor);
   if (store) factor_->save(b);
 }
