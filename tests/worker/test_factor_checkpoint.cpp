@@ -256,6 +256,14 @@ TEST(MicroUnitCheckpoint, WithFactorContinuesWithoutRebuild) {
     EXPECT_EQ(c.factor_rebuilt, it == 1 ? 1 : 0) << "iteration " << it;
   }
   EXPECT_TRUE(same_bits(run.w(), restored.w()));
+  // A factor dropped by the memory budget leaves the rebuild flag, as without the key.
+  run.commit_step();
+  run.drop_factor();
+  Bytes dropped_with, dropped_without;
+  run.serialize_for_checkpoint(dropped_with, true);
+  run.serialize_for_checkpoint(dropped_without, false);
+  EXPECT_TRUE(dropped_with == dropped_without);
+  EXPECT_EQ(dropped_with.size(), run.state_bytes());
   // A stored factor without the matrix it belongs to, or an unknown record flag, is refused.
   Bytes bad = without;
   bad.back() = std::byte{7};
