@@ -22,7 +22,7 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.factorization = f == "cholesky" ? Factorization::cholesky
                     : f == "lu"     ? Factorization::lu
                                     : Factorization::automatic;
-  const std::string r = s.choice("refresh", "fixed", {"every_iteration", "fixed", "adaptive", "collective"},
+  const std::string r = s.choice("refresh", "collective", {"every_iteration", "fixed", "adaptive", "collective"},
                                  "when to refactor K and recompute χ: every Newton iteration; "
                                  "at iteration 1 of every N_t-th step (paper Fig. 6); when "
                                  "the extra GMRES work since the last refresh has cost as "

@@ -15,8 +15,11 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bo
   SpecNode root(j, "", doc, &unit_spec_schema());
   root.string("title", "", "what this unit exploration shows");
   root.string("description", "", "longer notes");
-  u.plan = std::make_shared<const MicroModelPlan>(
-      MicroModel::plan(root.child("unit", true, "the micro unit"), base.empty() ? "." : base));
+  MicroModelPlan plan = MicroModel::plan(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);
+  // A lone unit is a model of one unit: the coordinators' collective rental is its own.
+  if (plan.options.refresh == MicroSolverOptions::Refresh::collective)
+    plan.options.refresh = MicroSolverOptions::Refresh::adaptive;
+  u.plan = std::make_shared<const MicroModelPlan>(std::move(plan));
   const bool one = root.has("Zbar"), path = root.has("Zbar_path");
   if (one == path)
     root.fail(one ? "Zbar_path" : "Zbar",

@@ -114,7 +114,7 @@ Schema micro_unit() {
                             "factor of K: CHOLMOD LLᵀ, UMFPACK LU, or LLᵀ while K is symmetric "
                             "positive definite and LU otherwise")},
                     {"refresh",
-                     choice("fixed", {"every_iteration", "fixed", "adaptive", "collective"},
+                     choice("collective", {"every_iteration", "fixed", "adaptive", "collective"},
                             "when to refactor K and recompute χ: every Newton iteration; at "
                             "iteration 1 of every N_t-th step (paper Fig. 6); when the extra "
                             "GMRES work since the last refresh has cost as much as a refresh "

@@ -217,7 +217,7 @@ TEST(HardCases, MacroBeatAtFourTimesTheTimeStep) {
 
 // Systole of the default beat (configs/lv-beat.json: 192 FE² units with Land 2017 cells,
 // unsymmetric active tangents, smooth-diode valves) from filling through the isovolumic
-// contraction into the ejection (t = 0.58 s): the default policies (units' adaptive
+// contraction into the ejection (t = 0.58 s): the default policies (units' collective
 // refresh, the stall guard) must converge through the valve opening and reach the answer
 // of refactoring every unit and the macro at every iteration. To fit the hard suite's
 // budget the units are 4×3×3 instead of 6×4×4 hexahedra; at the shipped 6×4×4 and to

@@ -1,6 +1,7 @@
 // The refresh policies (paper Fig. 6) as scripted sequences with exact answers: which
 // job refactors, given the libraries' flop counts and each job's GMRES iterations.
 #include "worker/RefreshPolicy.h"
+#include "worker/unit_spec.h"
 
 #include <gtest/gtest.h>
 
@@ -90,6 +91,34 @@ TEST(RefreshPolicy, StateRoundTripKeepsTheDecision) {
     EXPECT_EQ(a.due(0, 1), b.due(0, 1));
   }
   EXPECT_TRUE(b.due(0, 1));
+}
+
+}  // namespace
+}  // namespace fe2
+
+namespace fe2 {
+namespace {
+
+// Collective: the unit never refreshes on its own however stale its factor (the
+// coordinators decide, coordinator/CollectiveRefresh.h); it reports each job's excess
+// GMRES work and its refresh cost in the adaptive policy's own flop counts.
+TEST(RefreshPolicy, CollectiveLeavesTheDecisionToTheCoordinators) {
+  RefreshPolicy p(Kind::collective, 10, 200.0);
+  p.refreshed(10000.0, 1000.0);
+  EXPECT_EQ(refresh_jobs(p, std::vector<int>(20, 30)), std::vector<int>{0});
+  EXPECT_EQ(p.excess_flops(1), 0.0);
+  EXPECT_EQ(p.excess_flops(4), 3 * 1200.0);
+  EXPECT_EQ(p.refresh_flops(), 19000.0);
+}
+
+// `fe2heart unit` runs one unit with no coordinators: there a collective unit rents alone.
+TEST(RefreshPolicy, ALoneUnitSpecTakesCollectiveAsAdaptive) {
+  const json j = {{"unit", {{"cell", "homogeneous"}, {"resolution", {2, 2, 2}},
+                            {"materials", {{"matrix", {{"model", "neo_hookean"}, {"E", 1.0e4}, {"nu", 0.3}}}}},
+                            {"solver", {{"refresh", "collective"}}}}},
+                  {"Zbar", {0.01, 0, 0, 0, 0, 0, 0, 0, 0}}};
+  const cli::UnitSpec u = cli::read_unit_spec(j, "unit.json", nullptr, false);
+  EXPECT_EQ(u.plan->options.refresh, MicroSolverOptions::Refresh::adaptive);
 }
 
 }  // namespace
