@@ -32,6 +32,8 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
       t0_(wall_seconds()) {
   if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
   const std::vector<int> model = spec.model_of_points();
+  model_of_point_ = model;
+  num_models_ = static_cast<int>(spec.models.size());
   macro_law_.resize(model.size());
   std::vector<int> here;
   for (size_t u = 0; u < model.size(); ++u) {
@@ -43,6 +45,7 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
   if (coords_.rank() == 0) {
     costs_.emplace(placement_.size());
     last_cost_.resize(placement_.size());
+    planned_refresh_.assign(placement_.size(), -1);
   }
 }
 
@@ -60,12 +63,15 @@ bool FarmEvaluator::next_job_refreshes(int unit, int step, int iteration) const 
                                last_costs_at_.second, step, iteration);
 }
 
-void FarmEvaluator::rebalance(int step, int iteration) {
+void FarmEvaluator::rebalance(int step, int iteration, const std::vector<int64_t>& forced_model) {
   if (farm_units_.empty()) return;  // every point is evaluated where it lives
   Bytes plan_bytes;
   if (coords_.rank() == 0) {
     // Cost model: each unit's next job costs what its last job of the same kind did.
-    // Only units that travel are planned (local points are no movable work).
+    // Only units that travel are planned (local points are no movable work). A unit
+    // refreshes when its own policy said so with its last result, or when the
+    // coordinators force its model (a collective refresh, the stall guard): then all of
+    // a model's units cost a refresh at once, and moving them costs no rebuild.
     const int nw = static_cast<int>(layout_.worker_ranks.size());
     std::vector<int> index_of_rank(layout_.ranks, -1);
     for (int i = 0; i < nw; ++i) index_of_rank[layout_.worker_ranks[i]] = i;
@@ -73,7 +79,9 @@ void FarmEvaluator::rebalance(int step, int iteration) {
     std::vector<int> where(farm_units_.size());
     for (size_t i = 0; i < farm_units_.size(); ++i) {
       const int u = farm_units_[i];
-      cost[i] = costs_->predict_one(u, next_job_refreshes(u, step, iteration));
+      const bool refreshes = forced_model[model_of_point_[u]] > 0 || next_job_refreshes(u, step, iteration);
+      planned_refresh_[u] = refreshes ? 1 : 0;
+      cost[i] = costs_->predict_one(u, refreshes);
       where[i] = index_of_rank[placement_[u]];
     }
     const Plan plan = plan_rebalance(cost, where, nw, spec_.farm);
@@ -111,10 +119,18 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   last_.iteration = iteration;
   const bool new_step = step != last_step_;
   last_step_ = step;
-  if (spec_.farm.policy == FarmOptions::Policy::cost_based &&
-      coords_.allreduce_max(static_cast<int>(have_costs_)) &&
-      (spec_.farm.rebalance_at == FarmOptions::When::iteration || new_step))
-    rebalance(step, iteration);
+  if (coords_.rank() == 0) std::fill(planned_refresh_.begin(), planned_refresh_.end(), -1);
+  if (spec_.farm.policy == FarmOptions::Policy::cost_based) {
+    // Whether any coordinator has costs yet, and which models' jobs are forced to
+    // refresh, summed over the coordinators: a model's units may all live elsewhere.
+    std::vector<int64_t> known(1 + num_models_, 0);
+    known[0] = have_costs_ ? 1 : 0;
+    for (const auto& j : jobs)
+      if (j.force_refresh) known[1 + model_of_point_[j.unit]] = 1;
+    coords_.allreduce_sum(known.data(), static_cast<int>(known.size()));
+    if (known[0] > 0 && (spec_.farm.rebalance_at == FarmOptions::When::iteration || new_step))
+      rebalance(step, iteration, std::vector<int64_t>(known.begin() + 1, known.end()));
+  }
 
   // (a) dispatch: pure workers start pulling; this coordinator queues its units' jobs.
   proto::Control go;
@@ -227,6 +243,8 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       for (const proto::JobCost& c : rep.jobs) {
         FE2_CHECK(static_cast<size_t>(c.unit) < last_cost_.size(), "cost of unknown unit {}", c.unit);
         if (trace_) trace_->unit(step, iteration, placement_[c.unit], c);
+        if (planned_refresh_[c.unit] >= 0 && (planned_refresh_[c.unit] == 1) != (c.kind == proto::Refresh::refresh))
+          ++last_.refresh_forecast_misses;
         if (c.failed) continue;  // no cost measured: keep the unit's last good figures
         costs_->observe(c.unit, c.kind == proto::Refresh::refresh, c.cpu_seconds, c.cpu_refresh,
                         static_cast<double>(c.state_bytes));

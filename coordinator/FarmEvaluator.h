@@ -54,7 +54,10 @@ class FarmEvaluator final : public PointEvaluator {
 
  private:
   void send_to_pure_workers(const proto::Control& c);
-  void rebalance(int step, int iteration);
+  /// `forced_model[m]`: the jobs of model m carry the force flag in this iteration (a
+  /// collective refresh, or the stall guard's for every model), so they refresh whatever
+  /// the units' own policies said.
+  void rebalance(int step, int iteration, const std::vector<int64_t>& forced_model);
   bool next_job_refreshes(int unit, int step, int iteration) const;
   void collect_accounts(const std::vector<proto::JobOutput>& out, int step, int iteration,
                         double micro_phase, double t0);
@@ -70,6 +73,9 @@ class FarmEvaluator final : public PointEvaluator {
   std::vector<int> placement_;
   std::vector<int> farm_units_;        ///< units that travel: the rebalancer's problem
   std::vector<char> macro_law_;        ///< per unit: a macro-law point (trace counter)
+  std::vector<int> model_of_point_;    ///< per unit: its point model
+  int num_models_ = 0;
+  std::vector<int8_t> planned_refresh_;  ///< rank 0: the last plan's forecast per unit, −1 unplanned
   std::optional<LocalPoints> local_;   ///< points this coordinator evaluates in place
   std::optional<CostModel> costs_;  ///< rank 0
   std::vector<proto::JobCost> last_cost_;      ///< rank 0: each unit's last job

@@ -50,7 +50,8 @@ void Trace::iteration(const IterationTiming& t) {
                             {"comm2", t.comm2},       {"bytes", t.bytes},
                             {"migrations", t.migrations}, {"jobs", t.jobs},
                             {"local_jobs", t.local_jobs}, {"local_cpu", t.local_cpu},
-                            {"macro_law_jobs_sent", t.macro_law_jobs_sent}};
+                            {"macro_law_jobs_sent", t.macro_law_jobs_sent},
+                            {"refresh_forecast_misses", t.refresh_forecast_misses}};
   units_.flush();
   workers_.flush();
   iterations_ << j.dump() << '\n' << std::flush;

@@ -35,6 +35,10 @@ struct IterationTiming {
   long long local_jobs = 0;           ///< points evaluated by their coordinator (LocalPoints)
   double local_cpu = 0.0;             ///< their CPU seconds
   long long macro_law_jobs_sent = 0;  ///< jobs of macro-law points sent through the farm
+  /// Units whose refresh the rebalancer's plan did not foresee (or foresaw wrongly); 0
+  /// when no plan was made. A miss means the plan weighed that unit's job at the wrong
+  /// kind of cost.
+  int refresh_forecast_misses = 0;
 };
 
 /// Bytes written to each trace file so far (checkpoints; a restart continues there).

@@ -360,6 +360,7 @@ int run(const RunOptions& o) {
           t.local_jobs = f.local_jobs;
           t.local_cpu = f.local_cpu;
           t.macro_law_jobs_sent = f.macro_law_jobs_sent;
+          t.refresh_forecast_misses = f.refresh_forecast_misses;
           trace->iteration(t);
         },
         std::move(done));
