@@ -97,6 +97,9 @@ class MicroModel {
   const ElementScatter& scatter(int e) const { return scatter_[e]; }
   /// The zero-valued K with the fixed pattern, to copy into each unit.
   const SparseMatrix& pattern() const { return pattern_; }
+  /// A fresh copy of pattern() whose values lie on large pages (worker/large_pages.h):
+  /// an assembly adds into them at scattered places. What units assemble into.
+  SparseMatrix zero_matrix() const;
   /// True when every material's tangent has major symmetry, so H = Gᵀ and K is symmetric.
   bool symmetric() const { return symmetric_; }
   /// ‖ρ‖ with ρ_a = ⟨|∇N_a|⟩ over periodic nodes: r_ref = max(‖P̄‖, σ_floor) · node_scale.

@@ -41,7 +41,7 @@ MicroUnit::MicroUnit(MicroModelPtr model)
   model_->initial_history(history_);             // e.g. resting cells
   history_committed_ = history_;
   chi_ = Eigen::MatrixXd::Zero(n, 9);
-  sys_.K = model_->pattern();
+  sys_.K = model_->zero_matrix();
   sys_.r = Vec::Zero(n);
   sys_.G = Eigen::MatrixXd::Zero(n, 9);
   sys_.H = Eigen::MatrixXd::Zero(9, n);

@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "worker/cholmod_factor_io.h"
+#include "worker/large_pages.h"
 
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
@@ -87,19 +88,8 @@ class CholmodFactor final : public SparseFactor {
 
  private:
   static cholmod_sparse view(const SparseMatrix& K) {
-    cholmod_sparse A{};
-    A.nrow = K.rows();
-    A.ncol = K.cols();
-    A.nzmax = K.nonZeros();
-    A.p = const_cast<int*>(K.outerIndexPtr());
-    A.i = const_cast<int*>(K.innerIndexPtr());
-    A.x = const_cast<double*>(K.valuePtr());
-    A.stype = 1;
-    A.itype = CHOLMOD_INT;
-    A.xtype = CHOLMOD_REAL;
-    A.dtype = CHOLMOD_DOUBLE;
-    A.sorted = 1;
-    A.packed = 1;
+    cholmod_sparse A;
+    cholmod_upper_view(K, A);
     return A;
   }
   void check(const char* what) const {
@@ -194,6 +184,7 @@ void SparseFactor::load(ByteReader&, const SparseMatrix&) {
 }
 
 std::unique_ptr<SparseFactor> make_sparse_factor(FactorKind kind) {
+  use_large_pages_in_suitesparse();  // factors on 2 MiB pages (worker/large_pages.h)
   if (kind == FactorKind::cholesky) return std::make_unique<CholmodFactor>();
   return std::make_unique<UmfpackFactor>();
 }

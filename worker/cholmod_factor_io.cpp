@@ -224,4 +224,20 @@ cholmod_factor* read_cholmod_factor(ByteReader& r, const Eigen::SparseMatrix<dou
   return L.release();
 }
 
+void cholmod_upper_view(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& K, cholmod_sparse& A) {
+  A = cholmod_sparse{};
+  A.nrow = static_cast<size_t>(K.rows());
+  A.ncol = static_cast<size_t>(K.cols());
+  A.nzmax = static_cast<size_t>(K.nonZeros());
+  A.p = const_cast<int*>(K.outerIndexPtr());
+  A.i = const_cast<int*>(K.innerIndexPtr());
+  A.x = const_cast<double*>(K.valuePtr());
+  A.stype = 1;
+  A.itype = CHOLMOD_INT;
+  A.xtype = CHOLMOD_REAL;
+  A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1;
+  A.packed = 1;
+}
+
 }  // namespace fe2

@@ -20,6 +20,7 @@
 
 struct cholmod_factor_struct;
 struct cholmod_common_struct;
+struct cholmod_sparse_struct;
 
 namespace fe2 {
 
@@ -31,6 +32,10 @@ struct CholmodCounts {
 
 /// Writes supernodal numeric LLᵀ factor `L` (CHOLMOD_INT, real). @throws Error otherwise.
 void write_cholmod_factor(ByteWriter& w, const cholmod_factor_struct& L, const CholmodCounts& counts);
+
+/// CHOLMOD's view of compressed K, no copy: its upper triangle (stype 1), int indices,
+/// real double. Valid while K is alive and unchanged in size.
+void cholmod_upper_view(const Eigen::SparseMatrix<double, Eigen::ColMajor, int>& K, cholmod_sparse_struct& A);
 
 /// Reads a factor of a matrix with the pattern of `K` (full storage; CHOLMOD reads its
 /// upper triangle). Returns a factor owned by the caller (cholmod_free_factor with `c`).

@@ -16,7 +16,7 @@ proto::UnitFields micro_fields(const MicroUnit& micro, int unit, int step) {
   // Re-assemble at the unit's state with a scratch history (the unit keeps its own):
   // each element's share of P̄, and P̄ itself.
   MicroUnit::System sys;
-  sys.K = m.pattern();
+  sys.K = m.zero_matrix();
   std::vector<Vec9> share;
   micro.assemble_at(micro.w(), f.Zbar, sys, nullptr, &share);
   f.P_bar = sys.Pbar;

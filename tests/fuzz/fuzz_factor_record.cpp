@@ -44,17 +44,8 @@ const Sparse& laplacian() {
 }
 
 cholmod_sparse view(const Sparse& K) {
-  cholmod_sparse A{};
-  A.nrow = A.ncol = static_cast<size_t>(K.rows());
-  A.nzmax = static_cast<size_t>(K.nonZeros());
-  A.p = const_cast<int*>(K.outerIndexPtr());
-  A.i = const_cast<int*>(K.innerIndexPtr());
-  A.x = const_cast<double*>(K.valuePtr());
-  A.stype = 1;
-  A.itype = CHOLMOD_INT;
-  A.xtype = CHOLMOD_REAL;
-  A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = A.packed = 1;
+  cholmod_sparse A;
+  cholmod_upper_view(K, A);
   return A;
 }
 

@@ -162,7 +162,7 @@ TEST(MicroKernel, AssemblyMatchesTripletReference) {
   for (int k = 0; k < n; ++k) w[k] = 1e-3 * u(rng);
   const Vec9 Zbar = test::gradient({0.04, 0.01, -0.01, 0.02, -0.02, 0.0, 0.01, 0.0, -0.03});
   MicroUnit::System sys;
-  sys.K = model->pattern();
+  sys.K = model->zero_matrix();  // what units assemble into
   unit.assemble_at(w, Zbar, sys);
 
   std::vector<Eigen::Triplet<double>> trip;
