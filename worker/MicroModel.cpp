@@ -4,7 +4,10 @@
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/gmsh_reader.h"
+
+#include <spdlog/spdlog.h>
 #include "worker/MumpsSingleFactor.h"
+#include "worker/large_pages.h"
 #include "worker/micro_cell.h"
 #include "worker/micro_kernel.h"
 
@@ -102,8 +105,8 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
       c.axis = ax[0] - 'x';
       plan.region_names = {"a", "b"};
     } else if (c.kind == "two_cells") {
-      c.gap = s.number("gap", 0.1, Range{0.0, 0.5, true, true},
-                       "ECM gap per cell, as a fraction of L1");
+      c.gap = s.number("gap", 0.1, Range{0.0, 0.5, false, true},
+                       "ECM gap per cell, as a fraction of L1 (0: the cells join end to end)");
       c.cross_section = s.number("cross_section", 0.75, Range{0.0, 1.0, true, true},
                                  "cell width as a fraction of L2 and L3");
       plan.region_names = {"ecm", "cell"};
@@ -111,6 +114,18 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
       plan.region_names = {"matrix"};
     }
     plan.layout = c;
+    const CellResolution fit = cell_resolution(c);
+    if (std::abs(fit.realised - fit.nominal) > 0.1 * fit.nominal)
+      spdlog::warn("{} [{}, {}, {}] does not resolve the {} layout: its elements give {} {:.1f} % of "
+                   "the unit's volume, the layout {:.1f} %{}. Interfaces move to element faces, so "
+                   "refining changes the microstructure too; resolutions that are multiples of "
+                   "[{}, {}, {}] (0: none up to 1000) put every interface on element faces",
+                   plan.size_key, c.resolution[0], c.resolution[1], c.resolution[2], c.kind,
+                   c.kind == "two_cells" ? "the cells" : "phase b", 100.0 * fit.realised,
+                   100.0 * fit.nominal,
+                   c.kind == "two_cells" ? fmt::format(" (gap {}, cross_section {})", c.gap, c.cross_section)
+                                         : fmt::format(" (fraction {})", c.fraction),
+                   fit.exact[0], fit.exact[1], fit.exact[2]);
   }
   SpecNode mats = s.child("materials", true, "one material per region, by region name");
   for (const auto& name : plan.region_names) {
@@ -263,6 +278,18 @@ void MicroModel::initial_history(std::span<double> history) const {
     const size_t h = static_cast<size_t>(m.history_size());
     for (size_t q = 0; q < 8 && h > 0; ++q) m.initial_history(history.subspan(history_offset_[e] + q * h, h));
   }
+}
+
+SparseMatrix MicroModel::zero_matrix() const {
+  const int n = static_cast<int>(pattern_.rows());
+  const Eigen::Index nnz = pattern_.nonZeros();
+  SparseMatrix K(n, n);
+  K.resizeNonZeros(nnz);  // allocated, not yet filled: the advice still applies
+  advise_large_pages(K.valuePtr(), static_cast<size_t>(nnz) * sizeof(double));
+  std::copy_n(pattern_.outerIndexPtr(), n + 1, K.outerIndexPtr());
+  std::copy_n(pattern_.innerIndexPtr(), nnz, K.innerIndexPtr());
+  std::fill_n(K.valuePtr(), nnz, 0.0);
+  return K;
 }
 
 FactorKind MicroModel::initial_factor_kind() const {

@@ -29,6 +29,38 @@ int classify(const CellLayout& c, const Vec3& x) {
 
 }  // namespace
 
+CellResolution cell_resolution(const CellLayout& c) {
+  CellResolution r;
+  if (c.kind == "homogeneous") return r;
+  const auto [n1, n2, n3] = c.resolution;
+  long long in_region_1 = 0;
+  for (int k = 0; k < n3; ++k)
+    for (int j = 0; j < n2; ++j)
+      for (int i = 0; i < n1; ++i)
+        in_region_1 += classify(c, Vec3(c.size[0] * (i + 0.5) / n1, c.size[1] * (j + 0.5) / n2,
+                                        c.size[2] * (k + 0.5) / n3));
+  r.realised = static_cast<double>(in_region_1) / (static_cast<double>(n1) * n2 * n3);
+  // Interfaces at these fractions of each axis; n resolves them when n·t is whole.
+  std::array<std::vector<double>, 3> interfaces;
+  if (c.kind == "laminate") {
+    r.nominal = 1.0 - c.fraction;
+    interfaces[c.axis] = {c.fraction};
+  } else {  // two_cells: each half of axis 1 holds a cell of length L1/2 − gap·L1
+    r.nominal = (1.0 - 2.0 * c.gap) * c.cross_section * c.cross_section;
+    interfaces[0] = {0.5, 0.5 * c.gap, 0.5 - 0.5 * c.gap};
+    interfaces[1] = interfaces[2] = {0.5 - 0.5 * c.cross_section, 0.5 + 0.5 * c.cross_section};
+  }
+  for (int d = 0; d < 3; ++d) {
+    r.exact[d] = 0;
+    for (int n = 1; n <= 1000 && r.exact[d] == 0; ++n) {
+      bool whole = true;
+      for (double t : interfaces[d]) whole = whole && std::abs(n * t - std::round(n * t)) < 1e-9 * n;
+      if (whole) r.exact[d] = n;
+    }
+  }
+  return r;
+}
+
 HexMesh make_cell_mesh(const CellLayout& c) {
   const auto [n1, n2, n3] = c.resolution;
   HexMesh m;
