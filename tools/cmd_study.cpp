@@ -2,6 +2,7 @@
 // `fe2heart run` (under mpirun for NP > 1), measures what it cost, compares it with a
 // reference on the declared quantities, and writes study.json, study.csv, study.txt and
 // pareto.png. A failed variant stays in the results; only bad input stops the study.
+#include "common/hash.h"
 #include "common/io/atomic_file.h"
 #include "coordinator/RunSpec.h"
 #include "tools/commands.h"
@@ -41,7 +42,73 @@ struct VariantResult {
   std::map<std::string, QuantityError> errors;
   double error = -1;  ///< max over quantities; < 0: none
   bool pareto = false;
+  bool kept = false;  ///< --resume: finished by an earlier study in the same folder
 };
+
+/// What `--resume` compares before keeping a variant an earlier study finished, and the
+/// figures it keeps: DIR/variants/NAME/result.json, written when the variant ends.
+json variant_record(const StudyVariant& v, const VariantResult& r, int np, const std::vector<std::string>& launcher,
+                    const std::string& program) {
+  json j = {{"spec", v.spec},         {"np", np},           {"launcher", launcher},
+            {"program", program},     {"status", r.status}, {"exit_code", r.exit_code},
+            {"wall_seconds", r.wall}, {"cpu_seconds", r.cpu}, {"peak_rss_mb", r.peak_rss_mb}};
+  if (!r.reason.empty()) j["reason"] = r.reason;
+  return j;
+}
+
+/// The earlier result of variant `v` in `dir`, if it can be kept: it ended "ok", with
+/// this spec, ranks and launcher, and its run's summary.json says converged. `why` says
+/// otherwise why not (for the log).
+bool keep_earlier(const StudyVariant& v, const fs::path& dir, int np, const std::vector<std::string>& launcher,
+                  VariantResult& r, std::string& why) {
+  json rec, summary;
+  if (!fs::exists(dir / "result.json")) {
+    why = "no earlier result (a new variant, or the earlier study stopped before it ended)";
+    return false;
+  }
+  try {
+    rec = read_json_file((dir / "result.json").string());
+    summary = read_json_file((dir / "run" / "summary.json").string());
+  } catch (const InputError& e) {
+    why = e.what();
+    return false;
+  }
+  if (!rec.is_object() || rec.value("status", "") != "ok")
+    why = "it did not end \"ok\"";
+  else if (rec.value("spec", json()) != v.spec)
+    why = "its spec changed";
+  else if (rec.value("np", -1) != np || rec.value("launcher", json()) != json(launcher))
+    why = "its ranks or launcher changed";
+  else if (!summary.is_object() || !summary.value("converged", false))
+    why = "its run's summary.json does not say converged";
+  else {
+    try {
+      r.status = "ok";
+      r.exit_code = rec.at("exit_code").get<int>();
+      r.wall = rec.at("wall_seconds").get<double>();
+      r.cpu = rec.at("cpu_seconds").get<double>();
+      r.peak_rss_mb = rec.at("peak_rss_mb").get<double>();
+      r.core_hours = r.wall * np / 3600.0;
+    } catch (const json::exception& e) {
+      why = fmt::format("its result.json is incomplete ({})", e.what());
+      return false;
+    }
+    r.summary = std::move(summary);
+    r.kept = true;
+    return true;
+  }
+  return false;
+}
+
+/// A fingerprint of this fe2heart binary: --resume warns when kept results came from another build.
+std::string program_fingerprint(const std::string& self) {
+  std::ifstream in(self, std::ios::binary);
+  Fnv1a h;
+  std::vector<char> buffer(1 << 16);
+  while (in.read(buffer.data(), static_cast<std::streamsize>(buffer.size())) || in.gcount() > 0)
+    h.add(buffer.data(), static_cast<size_t>(in.gcount()));
+  return fmt::format("{:016x}", h.value());
+}
 
 /// Variables the launcher of *this* process set (when it was itself started by mpirun)
 /// would make a nested mpirun or singleton think it is part of our job; the user's own
@@ -184,27 +251,47 @@ int study(const StudyOptions& o) {
   std::error_code ec;
   if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
     throw InputError(fmt::format("--out '{}' exists and is not a folder; expected a folder for the study", o.out));
-  if (!o.overwrite && (fs::exists(fs::path(o.out) / "study.json", ec) || fs::exists(fs::path(o.out) / "variants", ec)))
-    throw InputError(fmt::format("--out '{}' already holds a study (study.json or variants/); use --overwrite "
-                                 "to replace it, or another --out",
+  if (!o.overwrite && !o.resume &&
+      (fs::exists(fs::path(o.out) / "study.json", ec) || fs::exists(fs::path(o.out) / "variants", ec)))
+    throw InputError(fmt::format("--out '{}' already holds a study (study.json or variants/); use --resume to go "
+                                 "on with it, --overwrite to replace it, or another --out",
                                  o.out));
 
   check_variants(s, o.out);
-  for (const StudyVariant& v : s.variants) {
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  const std::string program = program_fingerprint(self);
+  std::vector<VariantResult> results(s.variants.size());
+  std::vector<std::string> not_kept(s.variants.size());
+  for (size_t i = 0; i < s.variants.size(); ++i) {
+    const StudyVariant& v = s.variants[i];
     const fs::path d = fs::path(o.out) / "variants" / v.name;
+    if (o.resume && keep_earlier(v, d, np, launcher, results[i], not_kept[i])) {
+      const std::string earlier = read_json_file((d / "result.json").string()).value("program", "");
+      if (earlier != program)
+        spdlog::warn("variant '{}' is kept from a run by another build of fe2heart (fingerprint {}, this one {}); "
+                     "use --overwrite to run every variant again",
+                     v.name, earlier, program);
+      continue;
+    }
     fs::create_directories(d, ec);
     if (ec) throw InputError(fmt::format("--out '{}': cannot create '{}' ({})", o.out, d.string(), ec.message()));
+    fs::remove(d / "result.json", ec);  // written again when this variant ends
     write_file_atomically((d / "spec.json").string(), v.spec.dump(2) + "\n");
   }
 
-  const std::string self = fs::read_symlink("/proc/self/exe").string();
-  std::vector<VariantResult> results(s.variants.size());
   fmt::print("study {}: {} variants of {}, {} rank{} each\n", s.file, s.variants.size(), s.base, np,
              np == 1 ? "" : "s");
   std::fflush(stdout);
   for (size_t i = 0; i < s.variants.size(); ++i) {
     const StudyVariant& v = s.variants[i];
     VariantResult& r = results[i];
+    if (r.kept) {
+      fmt::print("[{}/{}] {}: ok, kept from the earlier study (CPU {:.1f} s)\n", i + 1, s.variants.size(), v.name,
+                 r.cpu);
+      std::fflush(stdout);
+      continue;
+    }
+    if (o.resume) spdlog::info("variant '{}' runs: {}", v.name, not_kept[i]);
     const fs::path d = fs::path(o.out) / "variants" / v.name;
     std::vector<std::string> argv = launcher;
     for (const std::string& a : {self, std::string("run"), (d / "spec.json").string(), std::string("--out"),
@@ -223,6 +310,8 @@ int study(const StudyOptions& o) {
       r.reason = last_error_line((d / "run.log").string());
       if (r.reason.empty()) r.reason = fmt::format("exit code {}", r.exit_code);
     }
+    write_file_atomically((d / "result.json").string(),
+                          variant_record(v, r, np, launcher, program).dump(2) + "\n");
     fmt::print("[{}/{}] {}: {} in {:.1f} s (CPU {:.1f} s){}\n", i + 1, s.variants.size(), v.name, r.status, r.wall,
                r.cpu, r.status == "ok" ? "" : ": " + r.reason);
     std::fflush(stdout);
@@ -318,6 +407,7 @@ int study(const StudyOptions& o) {
               {"micro_cpu_seconds", summary_double(sm, "/micro_cpu_seconds"_json_pointer)},
               {"steps", summary_int(sm, "/steps"_json_pointer)},
               {"reference", s.variants[i].name == ref_name},
+              {"kept_from_earlier_study", r.kept},
               {"pareto", r.pareto},
               {"run", (fs::path("variants") / s.variants[i].name / "run").string()}};
     if (!r.reason.empty()) v["reason"] = r.reason;

@@ -74,6 +74,7 @@ struct StudyOptions {
   std::string out;
   int np = 0;  ///< 0: the study file's "np"
   bool overwrite = false;
+  bool resume = false;  ///< keep the variants an earlier study in --out finished with the same spec
 };
 int study(const StudyOptions& o);
 /// `validate` of a study file: the study and every variant's run spec; runs nothing.

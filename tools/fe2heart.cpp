@@ -155,7 +155,11 @@ int main(int argc, char** argv) {
   c_study->add_option("study", study.spec, "study file (JSON)")->required();
   c_study->add_option("--out", study.out, "output folder")->required();
   c_study->add_option("--np", study.np, "ranks per variant (overrides \"np\")")->check(CLI::Range(1, 100000));
-  c_study->add_flag("--overwrite", study.overwrite, "replace an earlier study in --out");
+  auto* o_overwrite = c_study->add_flag("--overwrite", study.overwrite, "replace an earlier study in --out");
+  c_study->add_flag("--resume", study.resume,
+                    "go on with an earlier study in --out: keep each variant it finished (\"ok\") with the "
+                    "same spec, ranks and launcher; run the others")
+      ->excludes(o_overwrite);
 
   int rc = 0;
   try {

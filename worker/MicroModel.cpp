@@ -4,12 +4,12 @@
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/gmsh_reader.h"
-
-#include <spdlog/spdlog.h>
 #include "worker/MumpsSingleFactor.h"
 #include "worker/large_pages.h"
 #include "worker/micro_cell.h"
 #include "worker/micro_kernel.h"
+
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
