@@ -11,6 +11,7 @@
 
 #include <mpi.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
@@ -141,6 +142,38 @@ std::string last_error_line(const std::string& log) {
   return std::regex_replace(error.empty() ? last : error, prefix, "");
 }
 
+/// SIGINT or SIGTERM to the study (Ctrl-C, a batch system's time limit, `timeout`): passed
+/// on to the running variant, so no mpirun or rank outlives the study; the study then
+/// stops without recording that variant, and `--resume` runs it again.
+volatile sig_atomic_t g_stop_signal = 0;
+volatile pid_t g_child = 0;
+
+extern "C" void forward_stop_signal(int sig) {
+  g_stop_signal = sig;
+  if (g_child > 0) kill(g_child, sig);
+}
+
+/// Installs forward_stop_signal for SIGINT and SIGTERM while alive; restores the old handlers.
+class StopSignalForwarding {
+ public:
+  StopSignalForwarding() {
+    struct sigaction a {};
+    a.sa_handler = forward_stop_signal;
+    sigemptyset(&a.sa_mask);
+    sigaction(SIGINT, &a, &old_int_);
+    sigaction(SIGTERM, &a, &old_term_);
+  }
+  ~StopSignalForwarding() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopSignalForwarding(const StopSignalForwarding&) = delete;
+  StopSignalForwarding& operator=(const StopSignalForwarding&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
 /// Runs argv with stdout and stderr to `log`; wall seconds and the child's rusage
 /// (wait4: its CPU time and that of the processes it waited for, e.g. mpirun's ranks).
 int run_child(const std::vector<std::string>& argv, const std::string& log, VariantResult& r) {
@@ -161,16 +194,40 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, Vari
   posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   pid_t pid = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  const int rc = posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), envp.data());
+  // The child starts with the stop signals blocked, and unblocks them once g_child names
+  // it: a signal in between is then forwarded, not lost.
+  sigset_t stop, previous;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stop, &previous);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setsigmask(&attr, &previous);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  const int rc = posix_spawnp(&pid, args[0], &fa, &attr, args.data(), envp.data());
+  posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
+  if (rc == 0) g_child = pid;
+  sigprocmask(SIG_SETMASK, &previous, nullptr);
   if (rc != 0) {
     r.reason = fmt::format("cannot start '{}': {}", argv[0], std::strerror(rc));
     return 127;
   }
+  if (g_stop_signal != 0) kill(pid, g_stop_signal);  // arrived before the child could be named
   int status = 0;
   struct rusage ru {};
   while (wait4(pid, &status, 0, &ru) < 0)
-    if (errno != EINTR) throw Error(fmt::format("wait4 for '{}' failed: {}", argv[0], std::strerror(errno)));
+    if (errno != EINTR) {
+      g_child = 0;
+      throw Error(fmt::format("wait4 for '{}' failed: {}", argv[0], std::strerror(errno)));
+    }
+  g_child = 0;
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.cpu = ru.ru_utime.tv_sec + 1e-6 * ru.ru_utime.tv_usec + ru.ru_stime.tv_sec + 1e-6 * ru.ru_stime.tv_usec;
   r.peak_rss_mb = ru.ru_maxrss / 1024.0;  // kB on Linux
@@ -282,9 +339,10 @@ int study(const StudyOptions& o) {
   fmt::print("study {}: {} variants of {}, {} rank{} each\n", s.file, s.variants.size(), s.base, np,
              np == 1 ? "" : "s");
   std::fflush(stdout);
-  for (size_t i = 0; i < s.variants.size(); ++i) {
+  for (const StopSignalForwarding forwarding; size_t i : std::views::iota(size_t{0}, s.variants.size())) {
     const StudyVariant& v = s.variants[i];
     VariantResult& r = results[i];
+    if (g_stop_signal != 0) break;
     if (r.kept) {
       fmt::print("[{}/{}] {}: ok, kept from the earlier study (CPU {:.1f} s)\n", i + 1, s.variants.size(), v.name,
                  r.cpu);
@@ -298,6 +356,7 @@ int study(const StudyOptions& o) {
                                  (d / "run").string(), std::string("--overwrite")})
       argv.push_back(a);
     r.exit_code = run_child(argv, (d / "run.log").string(), r);
+    if (g_stop_signal != 0) break;  // not recorded: the variant was stopped, not finished
     r.core_hours = r.wall * np / 3600.0;
     try {
       r.summary = read_json_file((d / "run" / "summary.json").string());
@@ -315,6 +374,14 @@ int study(const StudyOptions& o) {
     fmt::print("[{}/{}] {}: {} in {:.1f} s (CPU {:.1f} s){}\n", i + 1, s.variants.size(), v.name, r.status, r.wall,
                r.cpu, r.status == "ok" ? "" : ": " + r.reason);
     std::fflush(stdout);
+  }
+
+  if (g_stop_signal != 0) {
+    const int sig = g_stop_signal;
+    spdlog::error("study {} stopped by signal {} ({}); the variants that ended are recorded in {}/variants; "
+                  "go on with: fe2heart study {} --out {} --resume",
+                  s.file, sig, strsignal(sig), o.out, o.spec, o.out);
+    return 128 + sig;
   }
 
   // The reference: a named variant, an earlier run, or the costliest variant that ran.
