@@ -24,6 +24,7 @@
 #include <fstream>
 #include <ranges>
 #include <regex>
+#include <thread>
 
 extern char** environ;
 
@@ -35,19 +36,22 @@ namespace fs = std::filesystem;
 
 /// What one variant cost and how it ended.
 struct VariantResult {
-  std::string status = "not run";  ///< "ok" or "failed"
+  /// "ok" (ran to its end and converged), "failed", or "stopped" (by a signal, at a
+  /// checkpoint that --resume continues from)
+  std::string status = "not run";
   int exit_code = 0;
-  std::string reason;  ///< a failed variant's last error line
+  std::string reason;  ///< a failed or stopped variant's last error line or how it stopped
   double wall = 0, cpu = 0, core_hours = 0, peak_rss_mb = 0;
   json summary;  ///< its summary.json (null if none)
   std::map<std::string, QuantityError> errors;
   double error = -1;  ///< max over quantities; < 0: none
   bool pareto = false;
-  bool kept = false;  ///< --resume: finished by an earlier study in the same folder
+  bool kept = false;       ///< --resume: finished by an earlier study in the same folder
+  bool continued = false;  ///< --resume: continued from the checkpoint an earlier study stopped it at
 };
 
-/// What `--resume` compares before keeping a variant an earlier study finished, and the
-/// figures it keeps: DIR/variants/NAME/result.json, written when the variant ends.
+/// What `--resume` compares before keeping or continuing a variant of an earlier study,
+/// and the cost so far: DIR/variants/NAME/result.json, written when the variant ends or stops.
 json variant_record(const StudyVariant& v, const VariantResult& r, int np, const std::vector<std::string>& launcher,
                     const std::string& program) {
   json j = {{"spec", v.spec},         {"np", np},           {"launcher", launcher},
@@ -57,48 +61,61 @@ json variant_record(const StudyVariant& v, const VariantResult& r, int np, const
   return j;
 }
 
-/// The earlier result of variant `v` in `dir`, if it can be kept: it ended "ok", with
-/// this spec, ranks and launcher, and its run's summary.json says converged. `why` says
-/// otherwise why not (for the log).
-bool keep_earlier(const StudyVariant& v, const fs::path& dir, int np, const std::vector<std::string>& launcher,
-                  VariantResult& r, std::string& why) {
+/// What an earlier study left of variant `v` in `dir`, for --resume.
+enum class Earlier { none, keep, continue_run };
+
+/// `keep`: it ended "ok" with this spec, ranks and launcher and its run is complete;
+/// `continue_run`: it was stopped at a checkpoint with the same; r then holds the cost so
+/// far (and for `keep`, the summary). `why` says otherwise why it runs from the start.
+Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, const std::vector<std::string>& launcher,
+                        VariantResult& r, std::string& why) {
   json rec, summary;
   if (!fs::exists(dir / "result.json")) {
     why = "no earlier result (a new variant, or the earlier study stopped before it ended)";
-    return false;
+    return Earlier::none;
   }
   try {
     rec = read_json_file((dir / "result.json").string());
     summary = read_json_file((dir / "run" / "summary.json").string());
   } catch (const InputError& e) {
     why = e.what();
-    return false;
+    return Earlier::none;
   }
-  if (!rec.is_object() || rec.value("status", "") != "ok")
-    why = "it did not end \"ok\"";
+  const std::string status = rec.is_object() ? rec.value("status", "") : "";
+  const bool complete = summary.is_object() && summary.value("converged", false) && summary.value("complete", false);
+  Earlier earlier = Earlier::none;
+  if (status != "ok" && status != "stopped")
+    why = fmt::format("it ended \"{}\"", status);
   else if (rec.value("spec", json()) != v.spec)
     why = "its spec changed";
   else if (rec.value("np", -1) != np || rec.value("launcher", json()) != json(launcher))
     why = "its ranks or launcher changed";
-  else if (!summary.is_object() || !summary.value("converged", false))
-    why = "its run's summary.json does not say converged";
-  else {
-    try {
-      r.status = "ok";
-      r.exit_code = rec.at("exit_code").get<int>();
-      r.wall = rec.at("wall_seconds").get<double>();
-      r.cpu = rec.at("cpu_seconds").get<double>();
-      r.peak_rss_mb = rec.at("peak_rss_mb").get<double>();
-      r.core_hours = r.wall * np / 3600.0;
-    } catch (const json::exception& e) {
-      why = fmt::format("its result.json is incomplete ({})", e.what());
-      return false;
-    }
+  else if (status == "ok" && !complete)
+    why = "its run's summary.json does not say complete and converged";
+  else if (status == "stopped" && !fs::exists(dir / "run" / "checkpoint.bin"))
+    why = "it was stopped, but its run has no checkpoint.bin";
+  else
+    earlier = status == "ok" ? Earlier::keep : Earlier::continue_run;
+  if (earlier == Earlier::none) return earlier;
+  try {
+    r.exit_code = rec.at("exit_code").get<int>();
+    r.wall = rec.at("wall_seconds").get<double>();
+    r.cpu = rec.at("cpu_seconds").get<double>();
+    r.peak_rss_mb = rec.at("peak_rss_mb").get<double>();
+  } catch (const json::exception& e) {
+    why = fmt::format("its result.json is incomplete ({})", e.what());
+    r = VariantResult{};
+    return Earlier::none;
+  }
+  if (earlier == Earlier::keep) {
+    r.status = "ok";
+    r.core_hours = r.wall * np / 3600.0;
     r.summary = std::move(summary);
     r.kept = true;
-    return true;
+  } else {
+    r.continued = true;
   }
-  return false;
+  return earlier;
 }
 
 /// A fingerprint of this fe2heart binary: --resume warns when kept results came from another build.
@@ -142,15 +159,22 @@ std::string last_error_line(const std::string& log) {
   return std::regex_replace(error.empty() ? last : error, prefix, "");
 }
 
-/// SIGINT or SIGTERM to the study (Ctrl-C, a batch system's time limit, `timeout`): passed
-/// on to the running variant, so no mpirun or rank outlives the study; the study then
-/// stops without recording that variant, and `--resume` runs it again.
+/// SIGINT or SIGTERM to the study (Ctrl-C, a batch system's time limit, `timeout`) is
+/// passed on to the running variant as SIGUSR1, which `fe2heart run` answers by writing a
+/// checkpoint at the next step boundary and stopping (mpirun forwards SIGUSR1 to the
+/// ranks); `--resume` continues it from there. A second signal is passed on as SIGTERM,
+/// on which mpirun ends its ranks at once. No mpirun or rank outlives the study.
 volatile sig_atomic_t g_stop_signal = 0;
+volatile sig_atomic_t g_stop_count = 0;
 volatile pid_t g_child = 0;
+
+/// What the child gets for the first stop signal, and for any later one.
+int forwarded_signal(int stop_count) { return stop_count <= 1 ? SIGUSR1 : SIGTERM; }
 
 extern "C" void forward_stop_signal(int sig) {
   g_stop_signal = sig;
-  if (g_child > 0) kill(g_child, sig);
+  g_stop_count = g_stop_count + 1;
+  if (g_child > 0) kill(g_child, forwarded_signal(g_stop_count));
 }
 
 /// Installs forward_stop_signal for SIGINT and SIGTERM while alive; restores the old handlers.
@@ -162,21 +186,29 @@ class StopSignalForwarding {
     sigemptyset(&a.sa_mask);
     sigaction(SIGINT, &a, &old_int_);
     sigaction(SIGTERM, &a, &old_term_);
+    // Variants start with SIGUSR1 ignored (exec keeps SIG_IGN) until `fe2heart run`
+    // installs its handler: one that arrived before would otherwise kill them. A stop
+    // lost that way is sent again (run_child).
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    sigaction(SIGUSR1, &ignore, &old_usr1_);
   }
   ~StopSignalForwarding() {
     sigaction(SIGINT, &old_int_, nullptr);
     sigaction(SIGTERM, &old_term_, nullptr);
+    sigaction(SIGUSR1, &old_usr1_, nullptr);
   }
   StopSignalForwarding(const StopSignalForwarding&) = delete;
   StopSignalForwarding& operator=(const StopSignalForwarding&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {}, old_term_ {}, old_usr1_ {};
 };
 
 /// Runs argv with stdout and stderr to `log`; wall seconds and the child's rusage
 /// (wait4: its CPU time and that of the processes it waited for, e.g. mpirun's ranks).
-int run_child(const std::vector<std::string>& argv, const std::string& log, VariantResult& r) {
+int run_child(const std::vector<std::string>& argv, const std::string& log, bool append, VariantResult& r) {
   std::vector<std::string> env_strings;
   for (char** e = environ; *e; ++e)
     if (!launcher_variable(*e)) env_strings.emplace_back(*e);
@@ -189,7 +221,8 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, Vari
 
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | (append ? O_APPEND : O_TRUNC),
+                                   0644);
   posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
   posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   pid_t pid = 0;
@@ -209,7 +242,10 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, Vari
   sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
   posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  // Its own process group: Ctrl-C at a terminal reaches only the study, which passes
+  // the stop on as above, instead of killing the variant outright.
+  posix_spawnattr_setpgroup(&attr, 0);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
   const int rc = posix_spawnp(&pid, args[0], &fa, &attr, args.data(), envp.data());
   posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
@@ -219,14 +255,25 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, Vari
     r.reason = fmt::format("cannot start '{}': {}", argv[0], std::strerror(rc));
     return 127;
   }
-  if (g_stop_signal != 0) kill(pid, g_stop_signal);  // arrived before the child could be named
+  if (g_stop_count > 0) kill(pid, forwarded_signal(g_stop_count));  // arrived before the child was named
   int status = 0;
   struct rusage ru {};
-  while (wait4(pid, &status, 0, &ru) < 0)
-    if (errno != EINTR) {
+  // Polled, so that a stop is sent again every few seconds until the child ends: the
+  // first may have come before the child could act on it.
+  auto last_sent = std::chrono::steady_clock::now();
+  for (;;) {
+    const pid_t done = wait4(pid, &status, WNOHANG, &ru);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) {
       g_child = 0;
       throw Error(fmt::format("wait4 for '{}' failed: {}", argv[0], std::strerror(errno)));
     }
+    if (g_stop_count > 0 && std::chrono::steady_clock::now() - last_sent > std::chrono::seconds(2)) {
+      kill(pid, forwarded_signal(g_stop_count));
+      last_sent = std::chrono::steady_clock::now();
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
   g_child = 0;
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.cpu = ru.ru_utime.tv_sec + 1e-6 * ru.ru_utime.tv_usec + ru.ru_stime.tv_sec + 1e-6 * ru.ru_stime.tv_usec;
@@ -322,12 +369,14 @@ int study(const StudyOptions& o) {
   for (size_t i = 0; i < s.variants.size(); ++i) {
     const StudyVariant& v = s.variants[i];
     const fs::path d = fs::path(o.out) / "variants" / v.name;
-    if (o.resume && keep_earlier(v, d, np, launcher, results[i], not_kept[i])) {
-      const std::string earlier = read_json_file((d / "result.json").string()).value("program", "");
-      if (earlier != program)
-        spdlog::warn("variant '{}' is kept from a run by another build of fe2heart (fingerprint {}, this one {}); "
+    const Earlier earlier = o.resume ? earlier_variant(v, d, np, launcher, results[i], not_kept[i]) : Earlier::none;
+    if (earlier != Earlier::none) {
+      const std::string earlier_program = read_json_file((d / "result.json").string()).value("program", "");
+      if (earlier_program != program)
+        spdlog::warn("variant '{}' is {} a run by another build of fe2heart (fingerprint {}, this one {}); "
                      "use --overwrite to run every variant again",
-                     v.name, earlier, program);
+                     v.name, earlier == Earlier::keep ? "kept from" : "continued from the checkpoint of",
+                     earlier_program, program);
       continue;
     }
     fs::create_directories(d, ec);
@@ -349,37 +398,57 @@ int study(const StudyOptions& o) {
       std::fflush(stdout);
       continue;
     }
-    if (o.resume) spdlog::info("variant '{}' runs: {}", v.name, not_kept[i]);
     const fs::path d = fs::path(o.out) / "variants" / v.name;
+    const fs::path run_dir = d / "run";
     std::vector<std::string> argv = launcher;
     for (const std::string& a : {self, std::string("run"), (d / "spec.json").string(), std::string("--out"),
-                                 (d / "run").string(), std::string("--overwrite")})
+                                 run_dir.string()})
       argv.push_back(a);
-    r.exit_code = run_child(argv, (d / "run.log").string(), r);
-    if (g_stop_signal != 0) break;  // not recorded: the variant was stopped, not finished
+    // A variant an earlier study stopped goes on from its checkpoint, in its own folder;
+    // its cost is that of both parts.
+    const VariantResult before = r;
+    if (r.continued) {
+      spdlog::info("variant '{}' continues from {}", v.name, (run_dir / "checkpoint.bin").string());
+      argv.insert(argv.end(), {"--restart", run_dir.string()});
+    } else {
+      if (o.resume) spdlog::info("variant '{}' runs: {}", v.name, not_kept[i]);
+      argv.push_back("--overwrite");
+    }
+    r.exit_code = run_child(argv, (d / "run.log").string(), /*append=*/r.continued, r);
+    r.wall += before.wall;
+    r.cpu += before.cpu;
+    r.peak_rss_mb = std::max(r.peak_rss_mb, before.peak_rss_mb);
     r.core_hours = r.wall * np / 3600.0;
     try {
-      r.summary = read_json_file((d / "run" / "summary.json").string());
+      r.summary = read_json_file((run_dir / "summary.json").string());
     } catch (const InputError&) {
       r.summary = nullptr;
     }
-    const bool converged = r.summary.is_object() && r.summary.value("converged", false);
-    r.status = r.exit_code == 0 && converged ? "ok" : "failed";
-    if (r.status == "failed" && r.reason.empty()) {
-      r.reason = last_error_line((d / "run.log").string());
+    const bool summary = r.summary.is_object();
+    if (r.exit_code == 0 && summary && r.summary.contains("stopped")) {
+      r.status = "stopped";
+      r.reason = fmt::format("stopped by a signal after step {}, at a checkpoint; --resume continues it",
+                             r.summary.value("steps", -1));
+    } else if (r.exit_code == 0 && summary && r.summary.value("converged", false) &&
+               r.summary.value("complete", false)) {
+      r.status = "ok";
+    } else {
+      r.status = "failed";
+      if (r.reason.empty()) r.reason = last_error_line((d / "run.log").string());
       if (r.reason.empty()) r.reason = fmt::format("exit code {}", r.exit_code);
     }
     write_file_atomically((d / "result.json").string(),
                           variant_record(v, r, np, launcher, program).dump(2) + "\n");
-    fmt::print("[{}/{}] {}: {} in {:.1f} s (CPU {:.1f} s){}\n", i + 1, s.variants.size(), v.name, r.status, r.wall,
-               r.cpu, r.status == "ok" ? "" : ": " + r.reason);
+    fmt::print("[{}/{}] {}: {}{} in {:.1f} s (CPU {:.1f} s){}\n", i + 1, s.variants.size(), v.name, r.status,
+               r.continued ? ", continued from its checkpoint," : "", r.wall, r.cpu,
+               r.status == "ok" ? "" : ": " + r.reason);
     std::fflush(stdout);
   }
 
   if (g_stop_signal != 0) {
     const int sig = g_stop_signal;
-    spdlog::error("study {} stopped by signal {} ({}); the variants that ended are recorded in {}/variants; "
-                  "go on with: fe2heart study {} --out {} --resume",
+    spdlog::error("study {} stopped by signal {} ({}); what the variants did is recorded in {}/variants (a "
+                  "stopped one at its checkpoint); go on with: fe2heart study {} --out {} --resume",
                   s.file, sig, strsignal(sig), o.out, o.spec, o.out);
     return 128 + sig;
   }
@@ -475,6 +544,7 @@ int study(const StudyOptions& o) {
               {"steps", summary_int(sm, "/steps"_json_pointer)},
               {"reference", s.variants[i].name == ref_name},
               {"kept_from_earlier_study", r.kept},
+              {"continued_from_checkpoint", r.continued},
               {"pareto", r.pareto},
               {"run", (fs::path("variants") / s.variants[i].name / "run").string()}};
     if (!r.reason.empty()) v["reason"] = r.reason;
@@ -527,7 +597,8 @@ int study(const StudyOptions& o) {
                        number(v["macro_factorizations"].get<double>(), "{:.0f}"),
                        v["reference"].get<bool>() ? std::string("reference")
                                                   : number(results[i].error, "{:.2e}"));
-    if (results[i].status != "ok") txt += fmt::format("    failed (exit {}): {}\n", results[i].exit_code, results[i].reason);
+    if (results[i].status != "ok")
+      txt += fmt::format("    {} (exit {}): {}\n", results[i].status, results[i].exit_code, results[i].reason);
   }
   write_file_atomically((fs::path(o.out) / "study.txt").string(), txt);
   fmt::print("{}", txt);

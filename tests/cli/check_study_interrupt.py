@@ -1,15 +1,22 @@
 #!/usr/bin/python3
 """A study stopped by SIGTERM (a batch system's time limit) stops its running variant
-with it, records only the variants that ended, and goes on with --resume.
+at a checkpoint, and --resume continues that variant from there.
 
-    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT
+    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT [NP]
 
-Runs a study of base.json with 400 and 401 steps (each a few seconds) and sends SIGTERM
-to the study once the first variant has its result.json. Checks: exit code 143 (128 +
-SIGTERM) and the log names --resume; the stopped variant did not run to its end (no
-summary.json) and no process of it is left (none has OUT in its command line); it has
-no result.json. Then
---resume keeps the first and runs the second, and study.json has both "ok".
+NP ranks per variant (default 1): with NP > 1 each variant runs under mpirun, which
+must be stopped with SIGUSR1 (forwarded to the ranks), not SIGTERM (which ends them).
+
+Runs a study of base.json with 400 and 800 steps (each a few seconds) and sends SIGTERM
+to the study once the second variant is iterating. Checks:
+- exit code 143 (128 + SIGTERM), the log names --resume, no study.json is written and no
+  process of the variant is left (none has OUT in its command line);
+- the first variant's result.json says "ok"; the second's says "stopped", and its run
+  has checkpoint.bin and a summary.json that is not complete.
+Then --resume keeps the first and continues the second from its checkpoint (its run.log
+says "restarted from"; its CPU seconds include the stopped part), both "ok", and the
+continued run's probe history equals that of the same spec run without a stop, bit for
+bit (a restart continues exactly).
 Exit 0 on success, 1 with the reasons otherwise.
 """
 import json
@@ -20,7 +27,7 @@ import subprocess
 import sys
 import time
 
-from check_study_resume import run, variants
+from check_study_resume import check_main, run, variants
 
 
 def processes_naming(text):
@@ -37,26 +44,28 @@ def processes_naming(text):
     return found
 
 
-def main(fe2heart, data, out):
+def main(fe2heart, data, out, np="1"):
     failures = []
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     study = {"base": os.path.join(data, "base.json"), "variants": [],
-             "one_at_a_time": {"/time/steps": [400, 401]}, "quantities": ["displacement"], "np": 1}
+             "one_at_a_time": {"/time/steps": [400, 800]}, "quantities": ["displacement"], "np": int(np)}
     spec = os.path.join(out, "slow.json")
     json.dump(study, open(spec, "w"), indent=2)
     result_dir = os.path.join(out, "study")
     first = os.path.join(result_dir, "variants", "steps=400", "result.json")
+    second = os.path.join(result_dir, "variants", "steps=800")
 
     p = subprocess.Popen([fe2heart, "study", spec, "--out", result_dir], stdout=subprocess.PIPE,
                          stderr=subprocess.STDOUT, text=True)
-    deadline = time.time() + 60
-    while not os.path.exists(first) and p.poll() is None and time.time() < deadline:
+    trace = os.path.join(second, "run", "trace_iterations.jsonl")
+    deadline = time.time() + 120
+    while not (os.path.exists(first) and os.path.exists(trace) and os.path.getsize(trace) > 0) \
+            and p.poll() is None and time.time() < deadline:
         time.sleep(0.05)
-    time.sleep(0.3)  # the second variant is running now
-    running = processes_naming(os.path.join(result_dir, "variants", "steps=401"))
+    running = processes_naming(second)
     p.send_signal(signal.SIGTERM)
-    output, _ = p.communicate(timeout=60)
+    output, _ = p.communicate(timeout=120)
     print(output)
     print(f"exit {p.returncode}; the second variant's processes before the signal: {running}")
     if not running:
@@ -69,27 +78,49 @@ def main(fe2heart, data, out):
     left = processes_naming(result_dir)
     if left:
         failures.append(f"processes outlived the study: {left}")
-    if not os.path.exists(first):
-        failures.append("the variant that ended has no result.json")
-    if os.path.exists(os.path.join(result_dir, "variants", "steps=401", "run", "summary.json")):
-        failures.append("the stopped variant ran to its end: the signal did not reach it")
-    if os.path.exists(os.path.join(result_dir, "variants", "steps=401", "result.json")):
-        failures.append("the stopped variant has a result.json")
     if os.path.exists(os.path.join(result_dir, "study.json")):
         failures.append("a stopped study wrote study.json")
+    records = {}
+    for name in ("steps=400", "steps=800"):
+        try:
+            records[name] = json.load(open(os.path.join(result_dir, "variants", name, "result.json")))
+        except OSError as e:
+            failures.append(f"{name}: no result.json ({e})")
+    if failures:
+        return failures
+    if records["steps=400"]["status"] != "ok" or records["steps=800"]["status"] != "stopped":
+        failures.append(f"statuses {records['steps=400']['status']}, {records['steps=800']['status']}; "
+                        "expected ok, stopped")
+    stopped_summary = json.load(open(os.path.join(second, "run", "summary.json")))
+    if stopped_summary.get("complete") or "stopped" not in stopped_summary:
+        failures.append("the stopped variant's summary.json says complete, or not stopped")
+    if not os.path.exists(os.path.join(second, "run", "checkpoint.bin")):
+        failures.append("the stopped variant has no checkpoint.bin")
 
     r = run([fe2heart, "study", spec, "--out", result_dir, "--resume"])
     v = variants(result_dir) if r.returncode == 0 else {}
-    kept = {n: (x["status"], x["kept_from_earlier_study"]) for n, x in v.items()}
-    if kept != {"steps=400": ("ok", True), "steps=401": ("ok", False)}:
-        failures.append(f"after --resume: {kept} (exit {r.returncode}); expected steps=400 kept, steps=401 run, both ok")
+    how = {n: (x["status"], x["kept_from_earlier_study"], x["continued_from_checkpoint"]) for n, x in v.items()}
+    if how != {"steps=400": ("ok", True, False), "steps=800": ("ok", False, True)}:
+        failures.append(f"after --resume: {how} (exit {r.returncode}); expected steps=400 kept, steps=800 continued, "
+                        "both ok")
+        return failures
+    if "restarted from" not in open(os.path.join(second, "run.log")).read():
+        failures.append("the continued variant's run.log does not say 'restarted from'")
+    if not v["steps=800"]["cpu_seconds"] > records["steps=800"]["cpu_seconds"]:
+        failures.append(f"the continued variant's CPU {v['steps=800']['cpu_seconds']} does not include the stopped "
+                        f"part's {records['steps=800']['cpu_seconds']}")
+    direct = os.path.join(out, "direct")
+    launcher = ["mpirun", "-n", np] if int(np) > 1 else []
+    if run(launcher + [fe2heart, "run", os.path.join(second, "spec.json"), "--out", direct]).returncode != 0:
+        return failures + ["the uninterrupted run failed"]
+    continued = json.load(open(os.path.join(second, "run", "summary.json")))
+    reference = json.load(open(os.path.join(direct, "summary.json")))
+    a = [(h["time"], h["probes"]) for h in continued["history"]]
+    b = [(h["time"], h["probes"]) for h in reference["history"]]
+    print(f"continued: {len(a)} steps, uninterrupted: {len(b)}; last tip {a[-1][1]} vs {b[-1][1]}")
+    if a != b:
+        failures.append("the continued run's probe history differs from the uninterrupted run's")
     return failures
 
-
 if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
-    problems = main(*sys.argv[1:])
-    for f in problems:
-        print("FAIL:", f)
-    sys.exit(1 if problems else 0)
+    check_main(main, __doc__, arguments=len(sys.argv) - 1 if len(sys.argv) in (4, 5) else 3)

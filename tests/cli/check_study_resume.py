@@ -107,10 +107,15 @@ def main(fe2heart, data, out):
     return failures
 
 
-if __name__ == "__main__":
-    if len(sys.argv) != 4:
-        sys.exit(__doc__)
+def check_main(main, doc, arguments=3):
+    """Runs main(*argv) of a check script: prints each failure, exits 1 if any, 0 if none."""
+    if len(sys.argv) != arguments + 1:
+        sys.exit(doc)
     problems = main(*sys.argv[1:])
     for f in problems:
         print("FAIL:", f)
     sys.exit(1 if problems else 0)
+
+
+if __name__ == "__main__":
+    check_main(main, __doc__)
