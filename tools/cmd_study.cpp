@@ -166,7 +166,7 @@ std::string last_error_line(const std::string& log) {
 /// on which mpirun ends its ranks at once. No mpirun or rank outlives the study.
 volatile sig_atomic_t g_stop_signal = 0;
 volatile sig_atomic_t g_stop_count = 0;
-volatile pid_t g_child = 0;
+volatile sig_atomic_t g_child = 0;  // the running variant's pid (pid_t is an int here)
 
 /// What the child gets for the first stop signal, and for any later one.
 int forwarded_signal(int stop_count) { return stop_count <= 1 ? SIGUSR1 : SIGTERM; }

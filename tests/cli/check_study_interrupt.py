@@ -2,10 +2,12 @@
 """A study stopped by SIGTERM (a batch system's time limit) stops its running variant
 at a checkpoint, and --resume continues that variant from there.
 
-    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT [NP]
+    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT [NP [SBATCH_SCRIPT]]
 
 NP ranks per variant (default 1): with NP > 1 each variant runs under mpirun, which
 must be stopped with SIGUSR1 (forwarded to the ranks), not SIGTERM (which ends them).
+With SBATCH_SCRIPT (configs/slurm/study.sbatch) the study is started, signalled and
+resumed through that script, run by bash outside Slurm, as a batch job would.
 
 Runs a study of base.json with 400 and 800 steps (each a few seconds) and sends SIGTERM
 to the study once the second variant is iterating. Checks:
@@ -44,7 +46,7 @@ def processes_naming(text):
     return found
 
 
-def main(fe2heart, data, out, np="1"):
+def main(fe2heart, data, out, np="1", sbatch=None):
     failures = []
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
@@ -56,8 +58,12 @@ def main(fe2heart, data, out, np="1"):
     first = os.path.join(result_dir, "variants", "steps=400", "result.json")
     second = os.path.join(result_dir, "variants", "steps=800")
 
-    p = subprocess.Popen([fe2heart, "study", spec, "--out", result_dir], stdout=subprocess.PIPE,
-                         stderr=subprocess.STDOUT, text=True)
+    if sbatch:  # the script calls `fe2heart` from PATH and always passes --resume
+        os.environ["PATH"] = os.path.dirname(os.path.abspath(fe2heart)) + os.pathsep + os.environ["PATH"]
+        study_command = ["bash", sbatch, spec, result_dir]
+    else:
+        study_command = [fe2heart, "study", spec, "--out", result_dir]
+    p = subprocess.Popen(study_command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     trace = os.path.join(second, "run", "trace_iterations.jsonl")
     deadline = time.time() + 120
     while not (os.path.exists(first) and os.path.exists(trace) and os.path.getsize(trace) > 0) \
@@ -97,7 +103,7 @@ def main(fe2heart, data, out, np="1"):
     if not os.path.exists(os.path.join(second, "run", "checkpoint.bin")):
         failures.append("the stopped variant has no checkpoint.bin")
 
-    r = run([fe2heart, "study", spec, "--out", result_dir, "--resume"])
+    r = run(study_command if sbatch else study_command + ["--resume"])
     v = variants(result_dir) if r.returncode == 0 else {}
     how = {n: (x["status"], x["kept_from_earlier_study"], x["continued_from_checkpoint"]) for n, x in v.items()}
     if how != {"steps=400": ("ok", True, False), "steps=800": ("ok", False, True)}:
@@ -123,4 +129,4 @@ def main(fe2heart, data, out, np="1"):
     return failures
 
 if __name__ == "__main__":
-    check_main(main, __doc__, arguments=len(sys.argv) - 1 if len(sys.argv) in (4, 5) else 3)
+    check_main(main, __doc__, arguments=len(sys.argv) - 1 if len(sys.argv) in (4, 5, 6) else 3)
