@@ -12,6 +12,7 @@
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
+#include "tools/stop_signal.h"
 #include "tools/study_spec.h"
 #include "worker/unit_spec.h"
 #include "worker/worker_loop.h"
@@ -27,11 +28,6 @@
 namespace fe2::cli {
 
 namespace {
-
-/// A batch system's request to stop (SIGTERM, SIGUSR1): the run checkpoints at the next
-/// step boundary and exits 0. Every rank catches it, so a pure worker is not killed.
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_stop_signal(int signal) { g_stop_signal = signal; }
 
 /// --restart on rank 0, before anything is built: the checkpoint (checked whole), the
 /// spec it ran against this one, and whether the run continues in its own folder.
@@ -214,6 +210,7 @@ int validate(const std::string& file, const std::string& memory_limit_text) {
 }
 
 int run(const RunOptions& o) {
+  catch_stop_signals();  // again: MPI_Init may have installed handlers of its own (tools/stop_signal.h)
   proto::Transport transport(MPI_COMM_WORLD);
   const proto::Group world(MPI_COMM_WORLD);
   const int rank = world.rank();
@@ -247,8 +244,6 @@ int run(const RunOptions& o) {
   proto::set_stall_timeout(spec.farm.stall_timeout);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
-  std::signal(SIGTERM, on_stop_signal);
-  std::signal(SIGUSR1, on_stop_signal);
 
   const bool coordinator = layout.is_coordinator(rank);
   const proto::Group coords = world.split(coordinator ? 0 : -1, rank);
@@ -322,7 +317,7 @@ int run(const RunOptions& o) {
         unit_output->write(sim.unit_fields(), time);
     };
     if (o.restart.empty()) write_fields(0, 0.0);
-    int stop_signal = 0;
+    int stopped_by = 0;
     const RunResult result = sim.run(
         [&](const StepRecord& r) {
           const double elapsed = wall_seconds() - t0;
@@ -336,7 +331,7 @@ int run(const RunOptions& o) {
           if (sim.is_output_step(r.step)) write_fields(r.step + 1, r.time);
           if (output) output->write_progress(sim, r, wall_seconds() - t0);
           // A signal on any coordinator stops all of them at this boundary, after a checkpoint.
-          const int signal = coords.allreduce_max(static_cast<int>(g_stop_signal));
+          const int signal = coords.allreduce_max(stop_signal());
           if (signal != 0 || (spec.checkpoint_every > 0 && (r.step + 1) % spec.checkpoint_every == 0)) {
             const CheckpointWritten w =
                 write_checkpoint(checkpoint_path(o.out), spec, world.size(), sim, points, coords,
@@ -345,7 +340,7 @@ int run(const RunOptions& o) {
                          format_bytes(static_cast<double>(w.bytes)), w.seconds);
           }
           if (signal != 0) {
-            stop_signal = signal;
+            stopped_by = signal;
             sim.request_stop();
           }
         },
@@ -378,7 +373,7 @@ int run(const RunOptions& o) {
         spdlog::warn("no pv_loop.png, pv_time.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
     }
     if (result.stopped) {
-      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", stop_signal == SIGTERM ? "SIGTERM" : stop_signal == SIGUSR1 ? "SIGUSR1" : std::to_string(stop_signal),
+      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGUSR1 ? "SIGUSR1" : std::to_string(stopped_by),
                    result.steps, result.history.back().time, checkpoint_path(o.out));
       spdlog::info("continue with: fe2heart run {} --out {} --restart {}", o.spec, o.out, o.out);
       return 0;

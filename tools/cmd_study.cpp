@@ -65,7 +65,8 @@ json variant_record(const StudyVariant& v, const VariantResult& r, int np, const
 enum class Earlier { none, keep, continue_run };
 
 /// `keep`: it ended "ok" with this spec, ranks and launcher and its run is complete;
-/// `continue_run`: it was stopped at a checkpoint with the same; r then holds the cost so
+/// `continue_run`: it was stopped, or killed by a signal, and its run has a checkpoint,
+/// with the same spec, ranks and launcher; r then holds the cost so
 /// far (and for `keep`, the summary). `why` says otherwise why it runs from the start.
 Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, const std::vector<std::string>& launcher,
                         VariantResult& r, std::string& why) {
@@ -84,7 +85,11 @@ Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, cons
   const std::string status = rec.is_object() ? rec.value("status", "") : "";
   const bool complete = summary.is_object() && summary.value("converged", false) && summary.value("complete", false);
   Earlier earlier = Earlier::none;
-  if (status != "ok" && status != "stopped")
+  // A variant killed by a signal (exit code 128 + signal) after a checkpoint goes on from
+  // it as a stopped one does: the checkpoint is whole (written atomically).
+  const bool killed = status == "failed" && rec.value("exit_code", 0) >= 128;
+  const bool resumable = status == "stopped" || killed;
+  if (status != "ok" && !resumable)
     why = fmt::format("it ended \"{}\"", status);
   else if (rec.value("spec", json()) != v.spec)
     why = "its spec changed";
@@ -92,8 +97,8 @@ Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, cons
     why = "its ranks or launcher changed";
   else if (status == "ok" && !complete)
     why = "its run's summary.json does not say complete and converged";
-  else if (status == "stopped" && !fs::exists(dir / "run" / "checkpoint.bin"))
-    why = "it was stopped, but its run has no checkpoint.bin";
+  else if (resumable && !fs::exists(dir / "run" / "checkpoint.bin"))
+    why = fmt::format("it was {}, and its run has no checkpoint.bin", killed ? "killed" : "stopped");
   else
     earlier = status == "ok" ? Earlier::keep : Earlier::continue_run;
   if (earlier == Earlier::none) return earlier;
@@ -159,52 +164,90 @@ std::string last_error_line(const std::string& log) {
   return std::regex_replace(error.empty() ? last : error, prefix, "");
 }
 
-/// SIGINT or SIGTERM to the study (Ctrl-C, a batch system's time limit, `timeout`) is
-/// passed on to the running variant as SIGUSR1, which `fe2heart run` answers by writing a
-/// checkpoint at the next step boundary and stopping (mpirun forwards SIGUSR1 to the
-/// ranks); `--resume` continues it from there. A second signal is passed on as SIGTERM,
-/// on which mpirun ends its ranks at once. No mpirun or rank outlives the study.
+/// A stop request to the study: SIGTERM (a batch system's time limit, `timeout`), SIGINT
+/// (Ctrl-C), SIGHUP (a lost terminal) or SIGQUIT. The handler only records it; run_child
+/// passes it on to the running variant (which has its own process group, so nothing
+/// reaches it but through the study):
+///   first request:       SIGUSR1, sent again every 2 s until the variant ends. `fe2heart
+///                        run` writes a checkpoint at the next step boundary and stops
+///                        (mpirun forwards SIGUSR1 to the ranks); --resume continues it.
+///   a second, >= 5 s later: SIGTERM (mpirun ends its ranks at once).
+///   a third,  >= 5 s later: SIGKILL to the variant's process group.
+/// Requests closer than 5 s to the first count as one: `timeout` signals the study and
+/// then its process group.
 volatile sig_atomic_t g_stop_signal = 0;
 volatile sig_atomic_t g_stop_count = 0;
-volatile sig_atomic_t g_child = 0;  // the running variant's pid (pid_t is an int here)
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
 
-/// What the child gets for the first stop signal, and for any later one.
-int forwarded_signal(int stop_count) { return stop_count <= 1 ? SIGUSR1 : SIGTERM; }
-
-extern "C" void forward_stop_signal(int sig) {
+extern "C" void record_stop_signal(int sig) {
   g_stop_signal = sig;
   g_stop_count = g_stop_count + 1;
-  if (g_child > 0) kill(g_child, forwarded_signal(g_stop_count));
 }
 
-/// Installs forward_stop_signal for SIGINT and SIGTERM while alive; restores the old handlers.
+/// Installs record_stop_signal for kStopSignals while alive; restores the old handlers.
 class StopSignalForwarding {
  public:
   StopSignalForwarding() {
     struct sigaction a {};
-    a.sa_handler = forward_stop_signal;
+    a.sa_handler = record_stop_signal;
     sigemptyset(&a.sa_mask);
-    sigaction(SIGINT, &a, &old_int_);
-    sigaction(SIGTERM, &a, &old_term_);
-    // Variants start with SIGUSR1 ignored (exec keeps SIG_IGN) until `fe2heart run`
-    // installs its handler: one that arrived before would otherwise kill them. A stop
-    // lost that way is sent again (run_child).
+    for (size_t i = 0; i < std::size(kStopSignals); ++i) sigaction(kStopSignals[i], &a, &old_[i]);
+    // Variants start with SIGUSR1 ignored (exec keeps SIG_IGN) until they handle it
+    // (tools/stop_signal.h); one that came before is sent again.
     struct sigaction ignore {};
     ignore.sa_handler = SIG_IGN;
     sigemptyset(&ignore.sa_mask);
     sigaction(SIGUSR1, &ignore, &old_usr1_);
   }
   ~StopSignalForwarding() {
-    sigaction(SIGINT, &old_int_, nullptr);
-    sigaction(SIGTERM, &old_term_, nullptr);
+    for (size_t i = 0; i < std::size(kStopSignals); ++i) sigaction(kStopSignals[i], &old_[i], nullptr);
     sigaction(SIGUSR1, &old_usr1_, nullptr);
   }
   StopSignalForwarding(const StopSignalForwarding&) = delete;
   StopSignalForwarding& operator=(const StopSignalForwarding&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {}, old_usr1_ {};
+  struct sigaction old_[std::size(kStopSignals)] {}, old_usr1_ {};
 };
+
+/// Passes the study's stop requests on to one running variant, escalating as above.
+class StopRelay {
+ public:
+  explicit StopRelay(pid_t child) : child_(child) {}
+  /// Called while the child is alive and not yet reaped (so its pid is its own).
+  void poll() {
+    using namespace std::chrono;
+    const auto now = steady_clock::now();
+    const int count = g_stop_count;
+    if (count > seen_) {
+      if (seen_ == 0) {
+        first_ = now;
+        level_ = 1;
+      } else if (now - first_ >= seconds(5) && level_ < 3) {
+        ++level_;
+        first_ = now;  // the next step needs another 5 s
+      }
+      seen_ = count;
+      send(now);
+    } else if (level_ > 0 && level_ < 3 && now - sent_ >= seconds(2)) {
+      send(now);  // it may have come before the child could act on it
+    }
+  }
+
+ private:
+  void send(std::chrono::steady_clock::time_point now) {
+    if (level_ == 1) kill(child_, SIGUSR1);
+    if (level_ == 2) kill(child_, SIGTERM);
+    if (level_ == 3) kill(-child_, SIGKILL);
+    sent_ = now;
+  }
+  pid_t child_;
+  int seen_ = 0, level_ = 0;
+  std::chrono::steady_clock::time_point first_{}, sent_{};
+};
+
+/// run_child's answer when a stop request came before the variant could start.
+constexpr int kNotStarted = -1;
 
 /// Runs argv with stdout and stderr to `log`; wall seconds and the child's rusage
 /// (wait4: its CPU time and that of the processes it waited for, e.g. mpirun's ranks).
@@ -227,54 +270,44 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, bool
   posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   pid_t pid = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  // The child starts with the stop signals blocked, and unblocks them once g_child names
-  // it: a signal in between is then forwarded, not lost.
+  // No stop request may fall between the last look at g_stop_count and the spawn.
   sigset_t stop, previous;
   sigemptyset(&stop);
-  sigaddset(&stop, SIGINT);
-  sigaddset(&stop, SIGTERM);
+  for (int sig : kStopSignals) sigaddset(&stop, sig);
   sigprocmask(SIG_BLOCK, &stop, &previous);
+  if (g_stop_count > 0) {
+    sigprocmask(SIG_SETMASK, &previous, nullptr);
+    posix_spawn_file_actions_destroy(&fa);
+    return kNotStarted;
+  }
   posix_spawnattr_t attr;
   posix_spawnattr_init(&attr);
   posix_spawnattr_setsigmask(&attr, &previous);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  sigaddset(&defaults, SIGTERM);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  // Its own process group: Ctrl-C at a terminal reaches only the study, which passes
-  // the stop on as above, instead of killing the variant outright.
+  posix_spawnattr_setsigdefault(&attr, &stop);
+  // Its own process group: Ctrl-C at a terminal or a lost terminal's SIGHUP reaches only
+  // the study, which passes the stop on, instead of killing the variant outright.
   posix_spawnattr_setpgroup(&attr, 0);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
   const int rc = posix_spawnp(&pid, args[0], &fa, &attr, args.data(), envp.data());
   posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&fa);
-  if (rc == 0) g_child = pid;
   sigprocmask(SIG_SETMASK, &previous, nullptr);
   if (rc != 0) {
     r.reason = fmt::format("cannot start '{}': {}", argv[0], std::strerror(rc));
     return 127;
   }
-  if (g_stop_count > 0) kill(pid, forwarded_signal(g_stop_count));  // arrived before the child was named
   int status = 0;
   struct rusage ru {};
-  // Polled, so that a stop is sent again every few seconds until the child ends: the
-  // first may have come before the child could act on it.
-  auto last_sent = std::chrono::steady_clock::now();
+  // Polled rather than blocking, so that stop requests are passed on as they come.
+  StopRelay relay(pid);
   for (;;) {
     const pid_t done = wait4(pid, &status, WNOHANG, &ru);
     if (done == pid) break;
-    if (done < 0 && errno != EINTR) {
-      g_child = 0;
+    if (done < 0 && errno != EINTR)
       throw Error(fmt::format("wait4 for '{}' failed: {}", argv[0], std::strerror(errno)));
-    }
-    if (g_stop_count > 0 && std::chrono::steady_clock::now() - last_sent > std::chrono::seconds(2)) {
-      kill(pid, forwarded_signal(g_stop_count));
-      last_sent = std::chrono::steady_clock::now();
-    }
+    relay.poll();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  g_child = 0;
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.cpu = ru.ru_utime.tv_sec + 1e-6 * ru.ru_utime.tv_usec + ru.ru_stime.tv_sec + 1e-6 * ru.ru_stime.tv_usec;
   r.peak_rss_mb = ru.ru_maxrss / 1024.0;  // kB on Linux
@@ -414,7 +447,12 @@ int study(const StudyOptions& o) {
       if (o.resume) spdlog::info("variant '{}' runs: {}", v.name, not_kept[i]);
       argv.push_back("--overwrite");
     }
-    r.exit_code = run_child(argv, (d / "run.log").string(), /*append=*/r.continued, r);
+    const int exit_code = run_child(argv, (d / "run.log").string(), /*append=*/r.continued, r);
+    if (exit_code == kNotStarted) {  // a stop came first: the variant stays as it was
+      r = before;
+      break;
+    }
+    r.exit_code = exit_code;
     r.wall += before.wall;
     r.cpu += before.cpu;
     r.peak_rss_mb = std::max(r.peak_rss_mb, before.peak_rss_mb);
@@ -447,8 +485,8 @@ int study(const StudyOptions& o) {
 
   if (g_stop_signal != 0) {
     const int sig = g_stop_signal;
-    spdlog::error("study {} stopped by signal {} ({}); what the variants did is recorded in {}/variants (a "
-                  "stopped one at its checkpoint); go on with: fe2heart study {} --out {} --resume",
+    spdlog::error("study {} stopped by signal {} ({}); what each variant did is recorded in "
+                  "{}/variants/NAME/result.json; go on with: fe2heart study {} --out {} --resume",
                   s.file, sig, strsignal(sig), o.out, o.spec, o.out);
     return 128 + sig;
   }

@@ -2,12 +2,15 @@
 #include "common/error.h"
 #include "coordinator/FarmOptions.h"
 #include "tools/commands.h"
+#include "tools/stop_signal.h"
 
 #include <CLI/CLI.hpp>
 #include <mpi.h>
 #include <spdlog/spdlog.h>
 
 int main(int argc, char** argv) {
+  // Before MPI_Init: a stop request during a run's start-up must not kill a rank.
+  fe2::cli::catch_stop_signals();
   MPI_Init(&argc, &argv);
   CLI::App app{"fe2heart: a multi-scale FE² heart simulator (macro tetrahedra driven by "
                "periodic micro units of cardiac cells)"};
@@ -170,6 +173,7 @@ int main(int argc, char** argv) {
     MPI_Finalize();
     return rc;
   }
+  if (!*c_run) fe2::cli::release_stop_signals();  // only `run` stops at a checkpoint
   spdlog::set_level(spdlog::level::from_str(level));
   spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
   try {

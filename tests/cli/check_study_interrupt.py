@@ -2,15 +2,20 @@
 """A study stopped by SIGTERM (a batch system's time limit) stops its running variant
 at a checkpoint, and --resume continues that variant from there.
 
-    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT [NP [SBATCH_SCRIPT]]
+    check_study_interrupt.py FE2HEART STUDY_DATA_DIR OUT [--np N] [--sbatch SCRIPT]
+                             [--early] [--killed]
 
-NP ranks per variant (default 1): with NP > 1 each variant runs under mpirun, which
-must be stopped with SIGUSR1 (forwarded to the ranks), not SIGTERM (which ends them).
-With SBATCH_SCRIPT (configs/slurm/study.sbatch) the study is started, signalled and
-resumed through that script, run by bash outside Slurm, as a batch job would.
+--np N: ranks per variant (default 1); with N > 1 each variant runs under mpirun, which
+  must be stopped with SIGUSR1 (forwarded to the ranks), not SIGTERM (which ends them).
+--sbatch SCRIPT (configs/slurm/study.sbatch): the study is started, signalled and
+  resumed through that script, run by bash outside Slurm, as a batch job would.
+--early: the signal comes as soon as the second variant has started (its ranks still
+  starting up), not once it iterates: it must still stop at a checkpoint, not die.
+--killed: before --resume, the stopped variant's result.json is made to say it was
+  killed (exit 137) after its checkpoint: --resume must continue it all the same.
 
 Runs a study of base.json with 400 and 800 steps (each a few seconds) and sends SIGTERM
-to the study once the second variant is iterating. Checks:
+to the study during the second. Checks:
 - exit code 143 (128 + SIGTERM), the log names --resume, no study.json is written and no
   process of the variant is left (none has OUT in its command line);
 - the first variant's result.json says "ok"; the second's says "stopped", and its run
@@ -21,6 +26,7 @@ continued run's probe history equals that of the same spec run without a stop, b
 bit (a restart continues exactly).
 Exit 0 on success, 1 with the reasons otherwise.
 """
+import argparse
 import json
 import os
 import shutil
@@ -29,7 +35,7 @@ import subprocess
 import sys
 import time
 
-from check_study_resume import check_main, run, variants
+from check_study_resume import run, variants
 
 
 def processes_naming(text):
@@ -46,12 +52,12 @@ def processes_naming(text):
     return found
 
 
-def main(fe2heart, data, out, np="1", sbatch=None):
+def main(fe2heart, data, out, np=1, sbatch=None, early=False, killed=False):
     failures = []
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(out)
     study = {"base": os.path.join(data, "base.json"), "variants": [],
-             "one_at_a_time": {"/time/steps": [400, 800]}, "quantities": ["displacement"], "np": int(np)}
+             "one_at_a_time": {"/time/steps": [400, 800]}, "quantities": ["displacement"], "np": np}
     spec = os.path.join(out, "slow.json")
     json.dump(study, open(spec, "w"), indent=2)
     result_dir = os.path.join(out, "study")
@@ -65,10 +71,16 @@ def main(fe2heart, data, out, np="1", sbatch=None):
         study_command = [fe2heart, "study", spec, "--out", result_dir]
     p = subprocess.Popen(study_command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     trace = os.path.join(second, "run", "trace_iterations.jsonl")
+    started = os.path.join(second, "run.log")  # opened for the variant as it is spawned
+
+    def second_is_where_we_want_it():
+        if early:
+            return os.path.exists(started)
+        return os.path.exists(first) and os.path.exists(trace) and os.path.getsize(trace) > 0
+
     deadline = time.time() + 120
-    while not (os.path.exists(first) and os.path.exists(trace) and os.path.getsize(trace) > 0) \
-            and p.poll() is None and time.time() < deadline:
-        time.sleep(0.05)
+    while not second_is_where_we_want_it() and p.poll() is None and time.time() < deadline:
+        time.sleep(0.01 if early else 0.05)
     running = processes_naming(second)
     p.send_signal(signal.SIGTERM)
     output, _ = p.communicate(timeout=120)
@@ -103,6 +115,11 @@ def main(fe2heart, data, out, np="1", sbatch=None):
     if not os.path.exists(os.path.join(second, "run", "checkpoint.bin")):
         failures.append("the stopped variant has no checkpoint.bin")
 
+    if killed:  # as if the variant had been killed after its checkpoint
+        record = os.path.join(second, "result.json")
+        rec = json.load(open(record))
+        rec.update(status="failed", exit_code=137, reason="killed by signal 9 (Killed)")
+        json.dump(rec, open(record, "w"), indent=2)
     r = run(study_command if sbatch else study_command + ["--resume"])
     v = variants(result_dir) if r.returncode == 0 else {}
     how = {n: (x["status"], x["kept_from_earlier_study"], x["continued_from_checkpoint"]) for n, x in v.items()}
@@ -116,7 +133,7 @@ def main(fe2heart, data, out, np="1", sbatch=None):
         failures.append(f"the continued variant's CPU {v['steps=800']['cpu_seconds']} does not include the stopped "
                         f"part's {records['steps=800']['cpu_seconds']}")
     direct = os.path.join(out, "direct")
-    launcher = ["mpirun", "-n", np] if int(np) > 1 else []
+    launcher = ["mpirun", "-n", str(np)] if np > 1 else []
     if run(launcher + [fe2heart, "run", os.path.join(second, "spec.json"), "--out", direct]).returncode != 0:
         return failures + ["the uninterrupted run failed"]
     continued = json.load(open(os.path.join(second, "run", "summary.json")))
@@ -129,4 +146,16 @@ def main(fe2heart, data, out, np="1", sbatch=None):
     return failures
 
 if __name__ == "__main__":
-    check_main(main, __doc__, arguments=len(sys.argv) - 1 if len(sys.argv) in (4, 5, 6) else 3)
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("fe2heart")
+    parser.add_argument("data")
+    parser.add_argument("out")
+    parser.add_argument("--np", type=int, default=1)
+    parser.add_argument("--sbatch")
+    parser.add_argument("--early", action="store_true")
+    parser.add_argument("--killed", action="store_true")
+    a = parser.parse_args()
+    problems = main(a.fe2heart, a.data, a.out, a.np, a.sbatch, a.early, a.killed)
+    for f in problems:
+        print("FAIL:", f)
+    sys.exit(1 if problems else 0)

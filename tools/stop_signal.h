@@ -1,0 +1,17 @@
+#pragma once
+// A batch system's request to stop a run (SIGTERM, SIGUSR1): `fe2heart run` writes a
+// checkpoint at the next step boundary and exits 0. The handler is installed before
+// MPI_Init, so a rank that is still starting up (reading its spec, building units) when
+// the request comes is not killed by it: it records the request like every other rank.
+
+namespace fe2::cli {
+
+/// From now on SIGTERM and SIGUSR1 are recorded, not acted on.
+void catch_stop_signals();
+/// The last stop signal recorded, or 0.
+int stop_signal();
+/// Back to the default actions (for every subcommand but `run`); a stop signal recorded
+/// meanwhile is raised again now, so it acts as it would have.
+void release_stop_signals();
+
+}  // namespace fe2::cli
