@@ -69,7 +69,7 @@ enum class Earlier { none, keep, continue_run };
 /// with the same spec, ranks and launcher; r then holds the cost so
 /// far (and for `keep`, the summary). `why` says otherwise why it runs from the start.
 Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, const std::vector<std::string>& launcher,
-                        VariantResult& r, std::string& why) {
+                        const std::string& program, VariantResult& r, std::string& why) {
   json rec, summary;
   if (!fs::exists(dir / "result.json")) {
     why = "no earlier result (a new variant, or the earlier study stopped before it ended)";
@@ -77,12 +77,19 @@ Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, cons
   }
   try {
     rec = read_json_file((dir / "result.json").string());
-    summary = read_json_file((dir / "run" / "summary.json").string());
   } catch (const InputError& e) {
     why = e.what();
     return Earlier::none;
   }
   const std::string status = rec.is_object() ? rec.value("status", "") : "";
+  if (status == "ok") {  // only a kept variant needs its summary (a killed one may have none)
+    try {
+      summary = read_json_file((dir / "run" / "summary.json").string());
+    } catch (const InputError& e) {
+      why = fmt::format("its run's summary.json cannot be read ({})", e.what());
+      return Earlier::none;
+    }
+  }
   const bool complete = summary.is_object() && summary.value("converged", false) && summary.value("complete", false);
   Earlier earlier = Earlier::none;
   // A variant killed by a signal (exit code 128 + signal) after a checkpoint goes on from
@@ -112,6 +119,12 @@ Earlier earlier_variant(const StudyVariant& v, const fs::path& dir, int np, cons
     r = VariantResult{};
     return Earlier::none;
   }
+  const std::string earlier_program = rec.value("program", "");
+  if (earlier_program != program)
+    spdlog::warn("variant '{}' is {} a run by another build of fe2heart (fingerprint {}, this one {}); "
+                 "use --overwrite to run every variant again",
+                 v.name, earlier == Earlier::keep ? "kept from" : "continued from the checkpoint of", earlier_program,
+                 program);
   if (earlier == Earlier::keep) {
     r.status = "ok";
     r.core_hours = r.wall * np / 3600.0;
@@ -402,16 +415,8 @@ int study(const StudyOptions& o) {
   for (size_t i = 0; i < s.variants.size(); ++i) {
     const StudyVariant& v = s.variants[i];
     const fs::path d = fs::path(o.out) / "variants" / v.name;
-    const Earlier earlier = o.resume ? earlier_variant(v, d, np, launcher, results[i], not_kept[i]) : Earlier::none;
-    if (earlier != Earlier::none) {
-      const std::string earlier_program = read_json_file((d / "result.json").string()).value("program", "");
-      if (earlier_program != program)
-        spdlog::warn("variant '{}' is {} a run by another build of fe2heart (fingerprint {}, this one {}); "
-                     "use --overwrite to run every variant again",
-                     v.name, earlier == Earlier::keep ? "kept from" : "continued from the checkpoint of",
-                     earlier_program, program);
+    if (o.resume && earlier_variant(v, d, np, launcher, program, results[i], not_kept[i]) != Earlier::none)
       continue;
-    }
     fs::create_directories(d, ec);
     if (ec) throw InputError(fmt::format("--out '{}': cannot create '{}' ({})", o.out, d.string(), ec.message()));
     fs::remove(d / "result.json", ec);  // written again when this variant ends
