@@ -4,15 +4,19 @@
 // the factored matrix, and when Z̄ has moved on by --stale-stretch and ten times that;
 // a refresh (numeric factorization plus the 9 characteristic-mode solves); and
 // CHOLMOD's own numeric factorization of the same matrix for comparison. With
-// --single, the same figures for a second unit whose factor is MUMPS single precision
-// (and --blr-tolerance, block low-rank), under "single".
+// --single, the same figures for a second unit whose factor is single precision
+// (--single-factor: the supernodal float LLᵀ or MUMPS, with --blr-tolerance block
+// low-rank), under "single".
 #include "common/cpu_timer.h"
+#include "common/error.h"
 #include "common/materials/NeoHookean.h"
 #include "tools/commands.h"
 #include "worker/MicroUnit.h"
+#include "worker/blas_core.h"
 #include "worker/micro_cell.h"
 
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,7 +32,23 @@ double median(std::vector<double> v) {
 }
 }  // namespace
 
+int bench_blas(bool suggested_only) {
+  const BlasCore core = blas_core();
+  if (suggested_only) {
+    fmt::print("{}\n", core.suggested);
+    return 0;
+  }
+  const char* set = std::getenv("OPENBLAS_CORETYPE");
+  const json j = {{"openblas_core", core.name},
+                  {"cpu", core.cpu},
+                  {"OPENBLAS_CORETYPE", set ? set : "unset"},
+                  {"suggested_OPENBLAS_CORETYPE", core.suggested}};
+  fmt::print("{}\n", j.dump(2));
+  return 0;
+}
+
 int bench_unit(const BenchOptions& o) {
+  if (const std::string w = blas_core_warning(blas_core()); !w.empty()) spdlog::warn("{}", w);
   const int n = std::max(2, static_cast<int>(std::lround(std::cbrt(o.dofs / 3.0))));
   CellLayout layout;
   layout.kind = o.cell;
@@ -127,6 +147,10 @@ int bench_unit(const BenchOptions& o) {
   if (o.single) {
     MicroSolverOptions s = opt;
     s.single_precision = true;
+    s.single_factor_mumps = o.single_factor == "mumps";
+    if (o.blr_tolerance > 0 && !s.single_factor_mumps)
+      throw InputError(fmt::format("--blr-tolerance {} needs --single-factor mumps (block "
+                                   "low-rank is a MUMPS option)", o.blr_tolerance));
     s.blr_tolerance = o.blr_tolerance;
     json js = measure(s, nullptr, &cholmod_ms);
     js.erase("dofs");
@@ -137,6 +161,8 @@ int bench_unit(const BenchOptions& o) {
     j["single"] = js;
   }
   const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
+  const BlasCore core = blas_core();
+  j["openblas_core"] = core.name;
   j["resolution"] = n;
   j["cell"] = o.cell;
   j["repeat"] = o.repeat;

@@ -14,6 +14,7 @@
 #include "tools/memory_limit.h"
 #include "tools/stop_signal.h"
 #include "tools/study_spec.h"
+#include "worker/blas_core.h"
 #include "worker/unit_spec.h"
 #include "worker/worker_loop.h"
 
@@ -280,6 +281,7 @@ int run(const RunOptions& o) {
       for (const std::string& note : restart.notes) spdlog::warn("{}", note);
       spdlog::info("{}", describe(spec));
       for (const std::string& w : spec.warnings) spdlog::warn("{}", w);
+      if (const std::string w = blas_core_warning(blas_core()); !w.empty()) spdlog::warn("{}", w);
       for (const auto& m : spec.models) {
         if (m.material) spdlog::info("model {}: {}", m.name, m.material->description());
         if (m.plan)

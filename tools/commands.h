@@ -31,10 +31,14 @@ struct BenchOptions {
   int repeat = 5;
   std::string cell = "two_cells";
   double stale_stretch = 0.002;  ///< how far Z̄ moves from the factored state
-  bool single = false;           ///< also time a unit with the single-precision MUMPS factor
-  double blr_tolerance = 0.0;    ///< its block low-rank threshold (0: full rank)
+  bool single = false;           ///< also time a unit with a single-precision factor
+  std::string single_factor = "supernodal";  ///< which: "supernodal" or "mumps"
+  double blr_tolerance = 0.0;    ///< MUMPS's block low-rank threshold (0: full rank)
 };
 int bench_unit(const BenchOptions& o);
+/// `fe2heart bench blas`: OpenBLAS's kernels, the CPU's vector extension and a better
+/// OPENBLAS_CORETYPE if there is one (worker/blas_core.h); only that with suggested_only.
+int bench_blas(bool suggested_only);
 
 struct CirculationOptions {
   std::string spec;

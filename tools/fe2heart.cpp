@@ -92,10 +92,19 @@ int main(int argc, char** argv) {
   c_bench_unit->add_option("--cell", bench.cell, "cell layout")
       ->check(CLI::IsMember({"two_cells", "homogeneous", "laminate"}));
   c_bench_unit->add_flag("--single", bench.single,
-                         "also time a unit whose factor is MUMPS single precision");
+                         "also time a unit whose factor is single precision");
+  c_bench_unit->add_option("--single-factor", bench.single_factor,
+                           "that factor: supernodal LLᵀ on CHOLMOD's analysis, or MUMPS")
+      ->check(CLI::IsMember({"supernodal", "mumps"}));
   c_bench_unit->add_option("--blr-tolerance", bench.blr_tolerance,
-                           "block low-rank threshold of that factor (0: full rank)")
+                           "block low-rank threshold of a MUMPS factor (0: full rank)")
       ->check(CLI::Range(0.0, 0.5));
+
+  bool blas_suggested_only = false;
+  auto* c_bench_blas = c_bench->add_subcommand(
+      "blas", "which OpenBLAS kernels run, and a better OPENBLAS_CORETYPE for this CPU if any");
+  c_bench_blas->add_flag("--suggested-coretype", blas_suggested_only,
+                         "print only the suggested OPENBLAS_CORETYPE (empty line: none)");
 
   auto* c_trace = app.add_subcommand("trace", "read a run's load-balance traces");
   c_trace->require_subcommand(1);
@@ -181,6 +190,7 @@ int main(int argc, char** argv) {
     else if (*c_validate) rc = fe2::cli::validate(validate_spec, validate_memory);
     else if (*c_unit) rc = fe2::cli::unit(unit);
     else if (*c_bench_unit) rc = fe2::cli::bench_unit(bench);
+    else if (*c_bench_blas) rc = fe2::cli::bench_blas(blas_suggested_only);
     else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);

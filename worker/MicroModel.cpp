@@ -4,6 +4,7 @@
 #include "common/hash.h"
 #include "common/materials/material_factory.h"
 #include "common/mesh/gmsh_reader.h"
+#include "worker/FloatCholeskyFactor.h"
 #include "worker/MumpsSingleFactor.h"
 #include "worker/large_pages.h"
 #include "worker/micro_cell.h"
@@ -45,14 +46,18 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.single_precision =
       s.choice("precision", "double", {"double", "single"},
                "precision of the factor of K (the GMRES preconditioner): double (CHOLMOD/"
-               "UMFPACK) or single (MUMPS, half the memory; residuals and answer stay "
-               "double)") == "single";
+               "UMFPACK) or single (half the memory; residuals and answer stay double)") ==
+      "single";
+  o.single_factor_mumps =
+      s.choice("single_factor", "supernodal", {"supernodal", "mumps"},
+               "single-precision factor: supernodal LLᵀ on CHOLMOD's analysis (the LLᵀ kind; "
+               "LU is always MUMPS) or MUMPS (LDLᵀ/LU, optionally block low-rank)") == "mumps";
   o.blr_tolerance = s.number("blr_tolerance", 0.0, Range{0.0, 1.0, false, true},
                              "block low-rank threshold of the single-precision MUMPS factor "
                              "(CNTL(7)); 0 = full rank");
-  if (o.blr_tolerance > 0 && !o.single_precision)
-    s.fail("blr_tolerance", "0 unless \"precision\" is \"single\" (block low-rank is a MUMPS "
-                            "single-precision option)");
+  if (o.blr_tolerance > 0 && !(o.single_precision && o.single_factor_mumps))
+    s.fail("blr_tolerance", "0 unless \"precision\" is \"single\" and \"single_factor\" is "
+                            "\"mumps\" (block low-rank is a MUMPS option)");
   s.finish();
   return o;
 }
@@ -301,6 +306,8 @@ FactorKind MicroModel::initial_factor_kind() const {
 }
 
 std::unique_ptr<SparseFactor> MicroModel::make_factor(FactorKind kind) const {
+  if (options_.single_precision && kind == FactorKind::cholesky && !options_.single_factor_mumps)
+    return make_float_cholesky_factor();
   if (options_.single_precision)
     return make_mumps_single_factor(kind == FactorKind::cholesky, options_.blr_tolerance);
   return make_sparse_factor(kind);

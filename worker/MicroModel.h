@@ -32,9 +32,11 @@ struct MicroSolverOptions {
   double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
-  /// The factor in single precision (MUMPS smumps), used only as the GMRES
-  /// preconditioner: the answer stays double, the factor costs half the memory.
+  /// The factor in single precision, used only as the GMRES preconditioner: the answer
+  /// stays double, the factor costs half the memory. The LLᵀ kind uses the supernodal
+  /// float LLᵀ (worker/FloatCholeskyFactor.h) unless single_factor_mumps; LU is MUMPS.
   bool single_precision = false;
+  bool single_factor_mumps = false;
   double blr_tolerance = 0.0;  ///< single precision only: block low-rank threshold, 0 = off
 
   /// Reads /.../solver; every key optional.

@@ -201,29 +201,47 @@ void MicroUnit::refresh() {
     factor_ = model_->make_factor(factor_kind_);
     factor_->factorize(sys_.K);
   }
-  // (c3) Eq. (6): χ = K⁻¹ G. The factor is exact for K unless LLᵀ was forced on an
-  // unsymmetric K; columns whose residual is too large are finished by GMRES.
-  const int n = model_->num_dofs();
+  // (c3) Eq. (6): χ = K⁻¹ G. The factor is exact for K unless it is single precision
+  // or LLᵀ was forced on an unsymmetric K. A single-precision factor leaves χ at float
+  // accuracy: rounds of block refinement χ ← χ + K̃⁻¹ (G − K χ), all nine columns in one
+  // solve, take it to the tolerance for much less than nine GMRES runs; a round that
+  // does not lower every unconverged residual ends them, and GMRES finishes the columns
+  // still above the tolerance.
   factor_->solve(sys_.G.data(), chi_.data(), 9);
+  const auto& o = model_->options();
+  Eigen::VectorXd tol(9);
+  for (int c = 0; c < 9; ++c) tol[c] = o.gmres_rtol * sys_.G.col(c).norm();
+  Eigen::MatrixXd R = sys_.G - sys_.K * chi_;
+  last_chi_solve_ = {};
+  constexpr int kMaxRefinementRounds = 6;
+  for (int round = 0; round < kMaxRefinementRounds; ++round) {
+    const Eigen::VectorXd r = R.colwise().norm().transpose();
+    if ((r.array() <= tol.array()).all()) break;
+    Eigen::MatrixXd D(R.rows(), 9);
+    factor_->solve(R.data(), D.data(), 9);
+    Eigen::MatrixXd chi_next = chi_ + D;
+    Eigen::MatrixXd R_next = sys_.G - sys_.K * chi_next;
+    const Eigen::VectorXd r_next = R_next.colwise().norm().transpose();
+    if (!((r_next.array() < r.array()) || (r.array() <= tol.array())).all()) break;
+    chi_ = std::move(chi_next);
+    R = std::move(R_next);
+    ++last_chi_solve_.refinement_rounds;
+  }
   const LinearOp A = [this](const Vec& x, Vec& y) { y.noalias() = sys_.K * x; };
   const LinearOp M = [this](const Vec& x, Vec& y) { factor_->solve(x.data(), y.data(), 1); };
-  const auto& o = model_->options();
   for (int c = 0; c < 9; ++c) {
-    const double bnorm = sys_.G.col(c).norm();
-    if (bnorm == 0.0) continue;
-    const double tol = o.gmres_rtol * bnorm;
+    if (tol[c] == 0.0 || R.col(c).norm() <= tol[c]) continue;
     Vec x = chi_.col(c);
-    if ((sys_.G.col(c) - sys_.K * x).norm() <= tol) continue;
-    const GmresResult res = gmres(A, M, sys_.G.col(c), x, tol, o.gmres_restart,
+    const GmresResult res = gmres(A, M, sys_.G.col(c), x, tol[c], o.gmres_restart,
                                   o.gmres_max_iterations, solve_floor());
     if (!res.converged)
       throw NumericalError(fmt::format(
           "micro unit: characteristic mode {} did not converge (GMRES residual {:.3e} after "
           "{} iterations, target {:.3e}, round-off floor {:.3e})",
-          c, res.residual, res.iterations, tol, solve_floor()(x)));
+          c, res.residual, res.iterations, tol[c], solve_floor()(x)));
     chi_.col(c) = x;
+    last_chi_solve_.gmres_iterations += res.iterations;
   }
-  (void)n;
   policy_.refreshed(factor_->factor_flops(), factor_->solve_flops());
   ++refresh_count_;
 }

@@ -75,6 +75,13 @@ class MicroUnit final : public PointModel {
   const Eigen::MatrixXd& chi() const { return chi_; }
   const System& system() const { return sys_; }
   int refresh_count() const { return refresh_count_; }
+  /// How the last refresh reached χ: rounds of block refinement (0 with an exact factor)
+  /// and GMRES iterations spent on columns refinement left above the tolerance.
+  struct ChiSolve {
+    int refinement_rounds = 0;
+    int gmres_iterations = 0;
+  };
+  const ChiSolve& last_chi_solve() const { return last_chi_solve_; }
   const RefreshPolicy& policy() const { return policy_; }
   FactorKind factor_kind() const { return factor_kind_; }
   const SparseFactor* factor() const { return factor_.get(); }
@@ -109,6 +116,7 @@ class MicroUnit final : public PointModel {
   Vec9 Zbar_committed_ = Vec9::Zero();
   RefreshPolicy policy_;            ///< when to refactor (its counters are state)
   int refresh_count_ = 0;
+  ChiSolve last_chi_solve_;         ///< diagnostics of the last refresh (not state)
   /// The factor state at the last commit, kept only once a refresh inside the current
   /// step has replaced it: a rolled-back step's retry then starts from exactly the
   /// committed unit (not from a factor and χ of a failed, perhaps inverted, iterate).

@@ -130,8 +130,13 @@ Schema micro_unit() {
                     {"precision",
                      choice("double", {"double", "single"},
                             "precision of the factor of K (the GMRES preconditioner): double "
-                            "(CHOLMOD/UMFPACK) or single (MUMPS, half the memory; residuals and "
-                            "answer stay double)")},
+                            "(CHOLMOD/UMFPACK) or single (half the memory; residuals and answer "
+                            "stay double)")},
+                    {"single_factor",
+                     choice("supernodal", {"supernodal", "mumps"},
+                            "single-precision factor: supernodal LLᵀ on CHOLMOD's analysis (the "
+                            "LLᵀ kind; LU is always MUMPS) or MUMPS (LDLᵀ/LU, optionally block "
+                            "low-rank)")},
                     {"blr_tolerance",
                      number(0.0, Range{0.0, 1.0, false, true},
                             "block low-rank threshold of the single-precision MUMPS factor "

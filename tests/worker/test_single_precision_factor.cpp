@@ -1,9 +1,11 @@
-// The single-precision MUMPS factor as the unit's GMRES preconditioner (issue #11, the
-// cost side): the answer stays the double-factor answer to the GMRES tolerance, the
-// float factor is really used (it costs GMRES iterations), and its spec keys are checked.
+// Single-precision factors as the unit's GMRES preconditioner (issue #11, the cost
+// side): the supernodal float LLᵀ and MUMPS. The answer stays the double-factor answer
+// to the GMRES tolerance, the float factor is really used (it costs GMRES iterations),
+// and the spec keys are checked.
 #include "common/error.h"
 #include "unit_fixtures.h"
 #include "worker/MicroModel.h"
+#include "worker/FloatCholeskyFactor.h"
 #include "worker/MumpsSingleFactor.h"
 
 #include <gtest/gtest.h>
@@ -63,6 +65,7 @@ TEST(SinglePrecisionFactor, SameHomogenizedAnswerAsDoubleFactor) {
   const UnitRun dbl = run({});
   MicroSolverOptions o;
   o.single_precision = true;
+  o.single_factor_mumps = true;
   const UnitRun sgl = run(o);
   EXPECT_EQ(dbl.factor, "cholmod_llt");
   EXPECT_EQ(sgl.factor, "mumps_single_ldlt");
@@ -80,10 +83,51 @@ TEST(SinglePrecisionFactor, SameHomogenizedAnswerAsDoubleFactor) {
   expect_same_answer(lu, dbl);
 }
 
+TEST(SinglePrecisionFactor, SupernodalFloatLltGivesTheSameAnswer) {
+  const UnitRun dbl = run({});
+  MicroSolverOptions o;
+  o.single_precision = true;  // the LLᵀ kind's default single-precision factor
+  const UnitRun sgl = run(o);
+  EXPECT_EQ(sgl.factor, "supernodal_single_llt");
+  // Right after the refresh the float factor needs more than one GMRES iteration.
+  EXPECT_GT(sgl.out[0].gmres_iterations, 1);
+  EXPECT_GT(sgl.gmres, dbl.gmres);
+  expect_same_answer(sgl, dbl);
+}
+
+// χ from a float factor: block refinement (nine columns per solve) reaches the GMRES
+// tolerance without per-column GMRES; an exact factor needs no round at all.
+TEST(SinglePrecisionFactor, CharacteristicModesAreRefinedAsABlock) {
+  for (const bool single : {false, true}) {
+    MicroSolverOptions o;
+    o.single_precision = single;
+    o.gmres_rtol = 1e-12;
+    MicroUnit unit(test::two_cell_model(o));
+    proto::JobInput in;
+    in.Zbar = gradient({0.05, 0.01, 0, 0, -0.02, 0, 0, 0, 0.01});
+    in.force_refresh = 1;
+    unit.iterate(in);
+    SCOPED_TRACE(unit.factor()->name());
+    const auto& chi = unit.last_chi_solve();
+    if (single) {
+      EXPECT_GE(chi.refinement_rounds, 1);
+      EXPECT_LE(chi.refinement_rounds, 4);
+    } else {
+      EXPECT_EQ(chi.refinement_rounds, 0);
+    }
+    EXPECT_EQ(chi.gmres_iterations, 0);
+    const SparseMatrix& K = unit.system().K;
+    const Eigen::MatrixXd& G = unit.system().G;
+    for (int c = 0; c < 9; ++c)
+      EXPECT_LE((G.col(c) - K * unit.chi().col(c)).norm(), 1e-12 * G.col(c).norm()) << c;
+  }
+}
+
 TEST(SinglePrecisionFactor, BlockLowRankGivesTheSameAnswer) {
   const UnitRun dbl = run({});
   MicroSolverOptions o;
   o.single_precision = true;
+  o.single_factor_mumps = true;
   o.blr_tolerance = 1e-4;
   const UnitRun blr = run(o);
   EXPECT_EQ(blr.factor, "mumps_single_ldlt_blr");
@@ -98,16 +142,20 @@ TEST(SinglePrecisionFactor, SolveIsAccurateToSinglePrecisionAndReportsCosts) {
   unit.iterate(in);
   const SparseMatrix& K = unit.system().K;
   const Eigen::MatrixXd& G = unit.system().G;
-  auto f = make_mumps_single_factor(true, 0.0);
-  f->factorize(K);
-  Eigen::MatrixXd X(G.rows(), 9);
-  f->solve(G.data(), X.data(), 9);
-  const double rel = (K * X - G).norm() / G.norm();
-  EXPECT_LT(rel, 1e-3);   // a float factor: far from double round-off ...
-  EXPECT_GT(rel, 1e-12);  // ... and not a double solve in disguise
-  EXPECT_GT(f->factor_flops(), 0.0);
-  EXPECT_GT(f->solve_flops(), 0.0);
-  EXPECT_GT(f->factor_bytes(), 0.0);
+  for (auto* make : {+[] { return make_mumps_single_factor(true, 0.0); },
+                     +[] { return make_float_cholesky_factor(); }}) {
+    auto f = make();
+    SCOPED_TRACE(f->name());
+    f->factorize(K);
+    Eigen::MatrixXd X(G.rows(), 9);
+    f->solve(G.data(), X.data(), 9);
+    const double rel = (K * X - G).norm() / G.norm();
+    EXPECT_LT(rel, 1e-3);   // a float factor: far from double round-off ...
+    EXPECT_GT(rel, 1e-12);  // ... and not a double solve in disguise
+    EXPECT_GT(f->factor_flops(), 0.0);
+    EXPECT_GT(f->solve_flops(), 0.0);
+    EXPECT_GT(f->factor_bytes(), 0.0);
+  }
 }
 
 MicroModelPlan plan_with(const nlohmann::json& solver) {
@@ -128,8 +176,11 @@ std::string refusal(const nlohmann::json& solver) {
 }
 
 TEST(SinglePrecisionFactor, SpecKeysAreReadAndBadValuesRefused) {
-  const MicroModelPlan p = plan_with({{"precision", "single"}, {"blr_tolerance", 1e-6}});
+  const MicroModelPlan p = plan_with(
+      {{"precision", "single"}, {"single_factor", "mumps"}, {"blr_tolerance", 1e-6}});
   EXPECT_TRUE(p.options.single_precision);
+  EXPECT_TRUE(p.options.single_factor_mumps);
+  EXPECT_FALSE(plan_with({{"precision", "single"}}).options.single_factor_mumps);
   EXPECT_EQ(p.options.blr_tolerance, 1e-6);
   // The memory estimate counts the float factor at half the double one's bytes.
   const MicroModelPlan d = plan_with(nlohmann::json::object());
@@ -138,11 +189,17 @@ TEST(SinglePrecisionFactor, SpecKeysAreReadAndBadValuesRefused) {
   std::string e = refusal({{"precision", "half"}});
   EXPECT_NE(e.find("/unit/solver/precision"), std::string::npos) << e;
   EXPECT_NE(e.find("half"), std::string::npos) << e;
-  e = refusal({{"precision", "single"}, {"blr_tolerance", 1.5}});
+  e = refusal({{"precision", "single"}, {"single_factor", "mumps"}, {"blr_tolerance", 1.5}});
   EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
   e = refusal({{"blr_tolerance", 1e-6}});
   EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
   EXPECT_NE(e.find("\"precision\" is \"single\""), std::string::npos) << e;
+  // Block low-rank is MUMPS's: refused with the supernodal factor, naming the key.
+  e = refusal({{"precision", "single"}, {"blr_tolerance", 1e-6}});
+  EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"single_factor\" is \"mumps\""), std::string::npos) << e;
+  e = refusal({{"precision", "single"}, {"single_factor", "pardiso"}});
+  EXPECT_NE(e.find("/unit/solver/single_factor"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -1,0 +1,353 @@
+#include "worker/FloatCholeskyFactor.h"
+
+#include "common/error.h"
+#include "worker/cholmod_factor_io.h"
+#include "worker/large_pages.h"
+
+#include <suitesparse/cholmod.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+// Single-precision BLAS/LAPACK (the Fortran interface every Debian BLAS provides).
+extern "C" {
+void ssyrk_(const char* uplo, const char* trans, const int* n, const int* k, const float* alpha,
+            const float* a, const int* lda, const float* beta, float* c, const int* ldc);
+void sgemm_(const char* ta, const char* tb, const int* m, const int* n, const int* k,
+            const float* alpha, const float* a, const int* lda, const float* b, const int* ldb,
+            const float* beta, float* c, const int* ldc);
+void strsm_(const char* side, const char* uplo, const char* transa, const char* diag,
+            const int* m, const int* n, const float* alpha, const float* a, const int* lda,
+            float* b, const int* ldb);
+void strsv_(const char* uplo, const char* trans, const char* diag, const int* n,
+            const float* a, const int* lda, float* x, const int* incx);
+void sgemv_(const char* trans, const int* m, const int* n, const float* alpha, const float* a,
+            const int* lda, const float* x, const int* incx, const float* beta, float* y,
+            const int* incy);
+void spotrf_(const char* uplo, const int* n, float* a, const int* lda, int* info);
+}
+
+namespace fe2 {
+
+namespace {
+
+constexpr float kOne = 1.0f, kZero = 0.0f, kMinusOne = -1.0f;
+constexpr int kInc = 1;
+
+/// Float array on large pages when it is big (the factor is streamed by every solve).
+struct FloatArray {
+  float* data = nullptr;
+  size_t size = 0;
+  FloatArray() = default;
+  FloatArray(const FloatArray&) = delete;
+  FloatArray& operator=(const FloatArray&) = delete;
+  ~FloatArray() { std::free(data); }
+  void allocate(size_t n) {
+    std::free(data);
+    data = static_cast<float*>(large_page_alloc(n * sizeof(float)));
+    if (!data && n > 0)
+      throw Error(fmt::format("out of memory for a single-precision factor of {} entries "
+                              "({:.0f} MB)", n, 4e-6 * static_cast<double>(n)));
+    size = n;
+  }
+};
+
+class FloatCholeskyFactor final : public SparseFactor {
+ public:
+  FloatCholeskyFactor() {
+    cholmod_start(&c_);
+    c_.supernodal = CHOLMOD_SUPERNODAL;  // the analysis builds supernodes and their rows
+    c_.print = 0;
+    c_.error_handler = nullptr;
+  }
+  ~FloatCholeskyFactor() override {
+    if (L_) cholmod_free_factor(&L_, &c_);
+    cholmod_finish(&c_);
+  }
+
+  void factorize(const SparseMatrix& K) override {
+    if (!L_) analyse(K);
+    FE2_CHECK(K.nonZeros() == nnz_K_ && K.rows() == n_,
+              "the pattern of K changed after the analysis");
+    ready_ = false;
+    load_scaled(K);
+    numeric();
+    ready_ = true;
+  }
+
+  void solve(const double* B, double* X, int nrhs) override;
+
+  std::string name() const override { return "supernodal_single_llt"; }
+  double factor_flops() const override { return fl_; }
+  double solve_flops() const override { return 4.0 * lnz_; }
+  double factor_bytes() const override {
+    return ready_ ? static_cast<double>(Lx_.size) * sizeof(float) +
+                        static_cast<double>(dest_.size()) * sizeof(int) +
+                        static_cast<double>(L_->ssize) * sizeof(int)
+                  : 0.0;
+  }
+
+ private:
+  void analyse(const SparseMatrix& K);
+  void load_scaled(const SparseMatrix& K);
+  void numeric();
+
+  int nsuper() const { return static_cast<int>(L_->nsuper); }
+  const int* super() const { return static_cast<const int*>(L_->super); }
+  const int* pi() const { return static_cast<const int*>(L_->pi); }
+  const int* px() const { return static_cast<const int*>(L_->px); }
+  const int* rows() const { return static_cast<const int*>(L_->s); }
+  const int* perm() const { return static_cast<const int*>(L_->Perm); }
+
+  cholmod_common c_;
+  cholmod_factor* L_ = nullptr;  ///< symbolic only: supernodes, row patterns, Perm
+  int n_ = 0;
+  Eigen::Index nnz_K_ = 0;
+  double fl_ = 0.0, lnz_ = 0.0;
+  int max_rows_ = 0;              ///< rows of the tallest supernode
+  std::vector<int> supernode_of_; ///< supernode holding each (permuted) column
+  std::vector<int> dest_;         ///< Lx position of each upper entry of K, in K's order
+  std::vector<double> scale_;     ///< S = diag(K)^(-1/2), original numbering
+  FloatArray Lx_;                 ///< the numeric factor, supernode by supernode
+  // Workspace of the numeric factorization and the solves.
+  std::vector<int> head_, next_, lpos_, map_, relative_map_;
+  std::vector<float> update_, y_, e_;
+};
+
+void FloatCholeskyFactor::analyse(const SparseMatrix& K) {
+  n_ = static_cast<int>(K.rows());
+  nnz_K_ = K.nonZeros();
+  cholmod_sparse A;
+  cholmod_upper_view(K, A);
+  L_ = cholmod_analyze(&A, &c_);
+  if (!L_ || c_.status < CHOLMOD_OK)
+    throw NumericalError(fmt::format("CHOLMOD cholmod_analyze failed with status {}", c_.status));
+  FE2_CHECK(L_->is_super, "CHOLMOD returned a simplicial analysis");
+  fl_ = c_.fl;
+  lnz_ = c_.lnz;
+
+  const int ns = nsuper();
+  supernode_of_.assign(n_, 0);
+  for (int s = 0; s < ns; ++s) {
+    for (int k = super()[s]; k < super()[s + 1]; ++k) supernode_of_[k] = s;
+    max_rows_ = std::max(max_rows_, pi()[s + 1] - pi()[s]);
+  }
+  std::vector<int> pinv(n_);
+  for (int k = 0; k < n_; ++k) pinv[perm()[k]] = k;
+
+  // Where each upper entry K(i, j), i ≤ j, lands in L: column min(p(i), p(j)) and row
+  // max(...) of the permuted matrix, inside that column's supernode. Entries are bucketed
+  // by permuted column first so that one row map per supernode serves all of them.
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  std::vector<int> count(n_ + 1, 0);
+  std::vector<int> entry_col, entry_row;
+  for (int j = 0; j < n_; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int i = inner[k];
+      if (i > j) continue;
+      const int pc = std::min(pinv[i], pinv[j]), pr = std::max(pinv[i], pinv[j]);
+      entry_col.push_back(pc);
+      entry_row.push_back(pr);
+      ++count[pc + 1];
+    }
+  for (int c = 0; c < n_; ++c) count[c + 1] += count[c];
+  std::vector<int> by_col(entry_col.size());
+  {
+    std::vector<int> fill(count.begin(), count.end() - 1);
+    for (size_t e = 0; e < entry_col.size(); ++e) by_col[fill[entry_col[e]]++] = static_cast<int>(e);
+  }
+  dest_.assign(entry_col.size(), -1);
+  map_.assign(n_, -1);
+  for (int s = 0; s < ns; ++s) {
+    const int k1 = super()[s], k2 = super()[s + 1];
+    const int nsrow = pi()[s + 1] - pi()[s];
+    for (int p = pi()[s]; p < pi()[s + 1]; ++p) map_[rows()[p]] = p - pi()[s];
+    for (int c = k1; c < k2; ++c)
+      for (int q = count[c]; q < count[c + 1]; ++q) {
+        const int e = by_col[q];
+        const int local = map_[entry_row[e]];
+        FE2_CHECK(local >= 0 && local < nsrow && rows()[pi()[s] + local] == entry_row[e],
+                  "K has an entry outside the pattern of its analysis");
+        dest_[e] = px()[s] + (c - k1) * nsrow + local;
+      }
+  }
+  Lx_.allocate(L_->xsize);
+  head_.resize(ns);
+  next_.resize(ns);
+  lpos_.resize(ns);
+  relative_map_.resize(max_rows_);
+  update_.resize(std::max<size_t>(L_->maxcsize, 1));
+  scale_.resize(n_);
+}
+
+// K̃ = S K S rounded to float, written straight into the factor's storage.
+void FloatCholeskyFactor::load_scaled(const SparseMatrix& K) {
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  const double* v = K.valuePtr();
+  for (int j = 0; j < n_; ++j) {
+    double d = 0.0;
+    for (int k = outer[j]; k < outer[j + 1]; ++k)
+      if (inner[k] == j) d = v[k];
+    if (!(d > 0.0) || !std::isfinite(d))
+      throw NumericalError(fmt::format(
+          "single-precision LLᵀ: unit matrix K has diagonal entry {} = {} (not positive "
+          "definite); use factorization \"lu\" or \"auto\"", j, d));
+    scale_[j] = 1.0 / std::sqrt(d);
+  }
+  std::fill(Lx_.data, Lx_.data + Lx_.size, 0.0f);
+  size_t e = 0;
+  for (int j = 0; j < n_; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int i = inner[k];
+      if (i > j) continue;
+      Lx_.data[dest_[e++]] = static_cast<float>(v[k] * scale_[i] * scale_[j]);
+    }
+}
+
+// Left-looking supernodal LLᵀ (the order of CHOLMOD's cholmod_super_numeric): supernode
+// s gathers the updates of every descendant d whose rows reach s's columns,
+//   L_s ← A_s − Σ_d L_d(rows ≥ k1) L_d(rows in [k1, k2))ᵀ,
+// then factors its diagonal block (spotrf) and solves its off-diagonal rows (strsm).
+// Each descendant waits in the linked list of the next supernode its rows reach.
+void FloatCholeskyFactor::numeric() {
+  const int ns = nsuper();
+  const int* Super = super();
+  const int* Lpi = pi();
+  const int* Lpx = px();
+  const int* Ls = rows();
+  float* Lx = Lx_.data;
+  std::fill(head_.begin(), head_.end(), -1);
+  for (int s = 0; s < ns; ++s) {
+    const int k1 = Super[s], k2 = Super[s + 1], nscol = k2 - k1;
+    const int psi = Lpi[s], nsrow = Lpi[s + 1] - psi;
+    float* Lsx = Lx + Lpx[s];
+    for (int p = 0; p < nsrow; ++p) map_[Ls[psi + p]] = p;
+
+    for (int d = head_[s]; d != -1;) {
+      const int dnext = next_[d];
+      const int ndcol = Super[d + 1] - Super[d];
+      const int pdi = Lpi[d], pdend = Lpi[d + 1], ndrow = pdend - pdi;
+      const int pdi1 = pdi + lpos_[d];
+      int pdi2 = pdi1;
+      while (pdi2 < pdend && Ls[pdi2] < k2) ++pdi2;
+      const int ndrow1 = pdi2 - pdi1, ndrow2 = pdend - pdi1, ndrow3 = ndrow2 - ndrow1;
+      const float* Ld = Lx + Lpx[d] + (pdi1 - pdi);
+      if (update_.size() < static_cast<size_t>(ndrow2) * ndrow1)
+        update_.resize(static_cast<size_t>(ndrow2) * ndrow1);
+      float* C = update_.data();
+      // C = L_d(rows ≥ k1) · L_d(rows in [k1, k2))ᵀ: its top square is symmetric.
+      ssyrk_("L", "N", &ndrow1, &ndcol, &kOne, Ld, &ndrow, &kZero, C, &ndrow2);
+      if (ndrow3 > 0)
+        sgemm_("N", "T", &ndrow3, &ndrow1, &ndcol, &kOne, Ld + ndrow1, &ndrow, Ld, &ndrow, &kZero,
+               C + ndrow1, &ndrow2);
+      for (int i = 0; i < ndrow2; ++i) relative_map_[i] = map_[Ls[pdi1 + i]];
+      for (int j = 0; j < ndrow1; ++j) {
+        float* column = Lsx + static_cast<size_t>(relative_map_[j]) * nsrow;
+        const float* c = C + static_cast<size_t>(j) * ndrow2;
+        for (int i = j; i < ndrow2; ++i) column[relative_map_[i]] -= c[i];
+      }
+      lpos_[d] = pdi2 - pdi;
+      if (pdi2 < pdend) {  // d's next rows belong to a later supernode
+        const int next_s = supernode_of_[Ls[pdi2]];
+        next_[d] = head_[next_s];
+        head_[next_s] = d;
+      }
+      d = dnext;
+    }
+
+    int info = 0;
+    spotrf_("L", &nscol, Lsx, &nsrow, &info);
+    if (info != 0)
+      throw NumericalError(fmt::format(
+          "single-precision LLᵀ: unit matrix K is not positive definite in float (leading "
+          "minor {} of {}); use precision \"double\" or factorization \"lu\"",
+          k1 + info, n_));
+    if (nsrow > nscol) {
+      const int m = nsrow - nscol;
+      strsm_("R", "L", "T", "N", &m, &nscol, &kOne, Lsx, &nsrow, Lsx + nscol, &nsrow);
+      lpos_[s] = nscol;
+      const int parent = supernode_of_[Ls[psi + nscol]];
+      next_[s] = head_[parent];
+      head_[parent] = s;
+    }
+  }
+}
+
+// x = S L⁻ᵀ L⁻¹ S b in the permuted numbering: forward over the supernodes (diagonal
+// triangle, then the rows below receive −L₂₁ x₁), backward in reverse.
+void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
+  FE2_CHECK(ready_, "solve before factorize");
+  const int n = n_;
+  const int ns = nsuper();
+  const int* Super = super();
+  const int* Lpi = pi();
+  const int* Lpx = px();
+  const int* Ls = rows();
+  const int* P = perm();
+  const float* Lx = Lx_.data;
+  y_.resize(static_cast<size_t>(n) * nrhs);
+  e_.resize(static_cast<size_t>(max_rows_) * nrhs);
+  for (int c = 0; c < nrhs; ++c) {
+    const double* b = B + static_cast<size_t>(c) * n;
+    float* y = y_.data() + static_cast<size_t>(c) * n;
+    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[P[k]] * scale_[P[k]]);
+  }
+  float* Y = y_.data();
+  float* E = e_.data();
+  for (int s = 0; s < ns; ++s) {
+    const int k1 = Super[s], nscol = Super[s + 1] - k1;
+    const int psi = Lpi[s], nsrow = Lpi[s + 1] - psi, m = nsrow - nscol;
+    const float* Lsx = Lx + Lpx[s];
+    if (nrhs == 1) {
+      strsv_("L", "N", "N", &nscol, Lsx, &nsrow, Y + k1, &kInc);
+      if (m == 0) continue;
+      sgemv_("N", &m, &nscol, &kOne, Lsx + nscol, &nsrow, Y + k1, &kInc, &kZero, E, &kInc);
+      for (int i = 0; i < m; ++i) Y[Ls[psi + nscol + i]] -= E[i];
+    } else {
+      strsm_("L", "L", "N", "N", &nscol, &nrhs, &kOne, Lsx, &nsrow, Y + k1, &n);
+      if (m == 0) continue;
+      sgemm_("N", "N", &m, &nrhs, &nscol, &kOne, Lsx + nscol, &nsrow, Y + k1, &n, &kZero, E, &m);
+      for (int c = 0; c < nrhs; ++c)
+        for (int i = 0; i < m; ++i)
+          Y[Ls[psi + nscol + i] + static_cast<size_t>(c) * n] -= E[i + static_cast<size_t>(c) * m];
+    }
+  }
+  for (int s = ns - 1; s >= 0; --s) {
+    const int k1 = Super[s], nscol = Super[s + 1] - k1;
+    const int psi = Lpi[s], nsrow = Lpi[s + 1] - psi, m = nsrow - nscol;
+    const float* Lsx = Lx + Lpx[s];
+    if (nrhs == 1) {
+      if (m > 0) {
+        for (int i = 0; i < m; ++i) E[i] = Y[Ls[psi + nscol + i]];
+        sgemv_("T", &m, &nscol, &kMinusOne, Lsx + nscol, &nsrow, E, &kInc, &kOne, Y + k1, &kInc);
+      }
+      strsv_("L", "T", "N", &nscol, Lsx, &nsrow, Y + k1, &kInc);
+    } else {
+      if (m > 0) {
+        for (int c = 0; c < nrhs; ++c)
+          for (int i = 0; i < m; ++i)
+            E[i + static_cast<size_t>(c) * m] = Y[Ls[psi + nscol + i] + static_cast<size_t>(c) * n];
+        sgemm_("T", "N", &nscol, &nrhs, &m, &kMinusOne, Lsx + nscol, &nsrow, E, &m, &kOne, Y + k1, &n);
+      }
+      strsm_("L", "L", "T", "N", &nscol, &nrhs, &kOne, Lsx, &nsrow, Y + k1, &n);
+    }
+  }
+  for (int c = 0; c < nrhs; ++c) {
+    const float* y = y_.data() + static_cast<size_t>(c) * n;
+    double* x = X + static_cast<size_t>(c) * n;
+    for (int k = 0; k < n; ++k) x[P[k]] = static_cast<double>(y[k]) * scale_[P[k]];
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<SparseFactor> make_float_cholesky_factor() {
+  use_large_pages_in_suitesparse();
+  return std::make_unique<FloatCholeskyFactor>();
+}
+
+}  // namespace fe2
