@@ -16,7 +16,6 @@
 #include "worker/micro_cell.h"
 
 #include <nlohmann/json.hpp>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
@@ -48,7 +47,9 @@ int bench_blas(bool suggested_only) {
 }
 
 int bench_unit(const BenchOptions& o) {
-  if (const std::string w = blas_core_warning(blas_core()); !w.empty()) spdlog::warn("{}", w);
+  // On stderr: stdout is the JSON document.
+  if (const std::string w = blas_core_warning(blas_core()); !w.empty())
+    fmt::print(stderr, "warning: {}\n", w);
   const int n = std::max(2, static_cast<int>(std::lround(std::cbrt(o.dofs / 3.0))));
   CellLayout layout;
   layout.kind = o.cell;
