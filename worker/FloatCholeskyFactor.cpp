@@ -68,7 +68,14 @@ class FloatCholeskyFactor final : public SparseFactor {
   }
 
   void factorize(const SparseMatrix& K) override {
-    if (!L_) analyse(K);
+    if (!L_) {
+      try {
+        analyse(K);
+      } catch (...) {  // leave no half-built analysis behind for a later call
+        cholmod_free_factor(&L_, &c_);
+        throw;
+      }
+    }
     FE2_CHECK(K.nonZeros() == nnz_K_ && K.rows() == n_,
               "the pattern of K changed after the analysis");
     ready_ = false;
@@ -114,6 +121,7 @@ class FloatCholeskyFactor final : public SparseFactor {
   // Workspace of the numeric factorization and the solves.
   std::vector<int> head_, next_, lpos_, map_, relative_map_;
   std::vector<float> update_, y_, e_;
+  std::vector<double> column_scale_;
 };
 
 void FloatCholeskyFactor::analyse(const SparseMatrix& K) {
@@ -188,16 +196,23 @@ void FloatCholeskyFactor::load_scaled(const SparseMatrix& K) {
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();
   const double* v = K.valuePtr();
+  size_t upper = 0;
   for (int j = 0; j < n_; ++j) {
     double d = 0.0;
-    for (int k = outer[j]; k < outer[j + 1]; ++k)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      if (!std::isfinite(v[k]))  // LAPACK's spotrf would pass a NaN on silently
+        throw NumericalError(fmt::format("single-precision LLᵀ: unit matrix K has entry ({}, {}) = {}",
+                                         inner[k], j, v[k]));
       if (inner[k] == j) d = v[k];
-    if (!(d > 0.0) || !std::isfinite(d))
+      if (inner[k] <= j) ++upper;
+    }
+    if (!(d > 0.0))
       throw NumericalError(fmt::format(
           "single-precision LLᵀ: unit matrix K has diagonal entry {} = {} (not positive "
           "definite); use factorization \"lu\" or \"auto\"", j, d));
     scale_[j] = 1.0 / std::sqrt(d);
   }
+  FE2_CHECK(upper == dest_.size(), "the pattern of K changed after the analysis");
   std::fill(Lx_.data, Lx_.data + Lx_.size, 0.0f);
   size_t e = 0;
   for (int j = 0; j < n_; ++j)
@@ -264,8 +279,9 @@ void FloatCholeskyFactor::numeric() {
     if (info != 0)
       throw NumericalError(fmt::format(
           "single-precision LLᵀ: unit matrix K is not positive definite in float (leading "
-          "minor {} of {}); use precision \"double\" or factorization \"lu\"",
-          k1 + info, n_));
+          "minor {} of {} in the fill-reducing order, at DOF {}); use precision \"double\" "
+          "or factorization \"lu\"",
+          k1 + info, n_, perm()[k1 + info - 1]));
     if (nsrow > nscol) {
       const int m = nsrow - nscol;
       strsm_("R", "L", "T", "N", &m, &nscol, &kOne, Lsx, &nsrow, Lsx + nscol, &nsrow);
@@ -291,10 +307,17 @@ void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
   const float* Lx = Lx_.data;
   y_.resize(static_cast<size_t>(n) * nrhs);
   e_.resize(static_cast<size_t>(max_rows_) * nrhs);
+  // Each column is divided by its largest |S b| before it is rounded (and multiplied back
+  // after), so right-hand sides of any magnitude stay inside float's range.
+  column_scale_.assign(nrhs, 1.0);
   for (int c = 0; c < nrhs; ++c) {
     const double* b = B + static_cast<size_t>(c) * n;
+    double biggest = 0.0;
+    for (int k = 0; k < n; ++k) biggest = std::max(biggest, std::abs(b[k] * scale_[k]));
+    if (biggest > 0.0 && std::isfinite(biggest)) column_scale_[c] = biggest;
+    const double inv = 1.0 / column_scale_[c];
     float* y = y_.data() + static_cast<size_t>(c) * n;
-    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[P[k]] * scale_[P[k]]);
+    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[P[k]] * scale_[P[k]] * inv);
   }
   float* Y = y_.data();
   float* E = e_.data();
@@ -339,7 +362,7 @@ void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
   for (int c = 0; c < nrhs; ++c) {
     const float* y = y_.data() + static_cast<size_t>(c) * n;
     double* x = X + static_cast<size_t>(c) * n;
-    for (int k = 0; k < n; ++k) x[P[k]] = static_cast<double>(y[k]) * scale_[P[k]];
+    for (int k = 0; k < n; ++k) x[P[k]] = static_cast<double>(y[k]) * scale_[P[k]] * column_scale_[c];
   }
 }
 

@@ -5,14 +5,16 @@
 // Why not a library: Debian 12's CHOLMOD (3.0.14) factors in double only, and MUMPS's
 // single-precision LDLᵀ measured 1.29× CHOLMOD's double refresh on the 27,780-DOF unit
 // (BENCHMARKS.md, "Single-precision factor"). This class keeps CHOLMOD's symbolic
-// analysis (METIS ordering, supernodes, row patterns) and does the numeric work itself,
+// analysis (the fill-reducing ordering it picks, METIS on the units measured;
+// supernodes; row patterns) and does the numeric work itself,
 // supernode by supernode in the left-looking order CHOLMOD's own numeric factorization
 // uses, with the single-precision BLAS/LAPACK kernels (ssyrk, sgemm, spotrf, strsm):
 // twice the SIMD width and half the memory traffic of the double factor.
 //
 // K is scaled symmetrically to unit diagonal before it is rounded to float,
-// K̃ = S K S with S = diag(K)^(-1/2), so that units with a stiffness contrast of 10³ and
-// more keep their soft entries' digits; a solve returns S K̃⁻¹ S b.
+// K̃ = S K S with S = diag(K)^(-1/2), so that entries of any magnitude (units in Pa or
+// MPa, contrasts of 10³ and more) stay inside float's range; a solve returns S K̃⁻¹ S b,
+// each right-hand side normalised before it is rounded.
 #include "worker/SparseFactor.h"
 
 #include <memory>

@@ -5,6 +5,7 @@
 #include "worker/micro_kernel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -203,42 +204,57 @@ void MicroUnit::refresh() {
   }
   // (c3) Eq. (6): χ = K⁻¹ G. The factor is exact for K unless it is single precision
   // or LLᵀ was forced on an unsymmetric K. A single-precision factor leaves χ at float
-  // accuracy: rounds of block refinement χ ← χ + K̃⁻¹ (G − K χ), all nine columns in one
-  // solve, take it to the tolerance for much less than nine GMRES runs; a round that
-  // does not lower every unconverged residual ends them, and GMRES finishes the columns
-  // still above the tolerance.
+  // accuracy: rounds of block refinement χ ← χ + K̃⁻¹ (G − K χ), the unfinished columns
+  // in one solve, take it to the tolerance for much less than nine GMRES runs. A column
+  // is finished at the tolerance or at the solve's round-off floor (as GMRES judges it);
+  // a round that does not lower every unfinished residual is dropped and ends them, and
+  // GMRES finishes the columns still open.
   factor_->solve(sys_.G.data(), chi_.data(), 9);
   const auto& o = model_->options();
+  const ResidualFloor floor = solve_floor();
   Eigen::VectorXd tol(9);
   for (int c = 0; c < 9; ++c) tol[c] = o.gmres_rtol * sys_.G.col(c).norm();
   Eigen::MatrixXd R = sys_.G - sys_.K * chi_;
+  std::array<bool, 9> finished{};
+  auto update_finished = [&](const Eigen::MatrixXd& X, const Eigen::VectorXd& r) {
+    bool all = true;
+    for (int c = 0; c < 9; ++c) {
+      if (!finished[c]) finished[c] = r[c] <= tol[c] || r[c] <= floor(X.col(c));
+      all = all && finished[c];
+    }
+    return all;
+  };
   last_chi_solve_ = {};
   constexpr int kMaxRefinementRounds = 6;
-  for (int round = 0; round < kMaxRefinementRounds; ++round) {
-    const Eigen::VectorXd r = R.colwise().norm().transpose();
-    if ((r.array() <= tol.array()).all()) break;
+  Eigen::VectorXd r = R.colwise().norm().transpose();
+  for (int round = 0; !update_finished(chi_, r) && round < kMaxRefinementRounds; ++round) {
     Eigen::MatrixXd D(R.rows(), 9);
     factor_->solve(R.data(), D.data(), 9);
+    for (int c = 0; c < 9; ++c)
+      if (finished[c]) D.col(c).setZero();
     Eigen::MatrixXd chi_next = chi_ + D;
     Eigen::MatrixXd R_next = sys_.G - sys_.K * chi_next;
     const Eigen::VectorXd r_next = R_next.colwise().norm().transpose();
-    if (!((r_next.array() < r.array()) || (r.array() <= tol.array())).all()) break;
+    bool lower = true;
+    for (int c = 0; c < 9; ++c) lower = lower && (finished[c] || r_next[c] < r[c]);
+    if (!lower) break;
     chi_ = std::move(chi_next);
     R = std::move(R_next);
+    r = r_next;
     ++last_chi_solve_.refinement_rounds;
   }
   const LinearOp A = [this](const Vec& x, Vec& y) { y.noalias() = sys_.K * x; };
   const LinearOp M = [this](const Vec& x, Vec& y) { factor_->solve(x.data(), y.data(), 1); };
   for (int c = 0; c < 9; ++c) {
-    if (tol[c] == 0.0 || R.col(c).norm() <= tol[c]) continue;
+    if (finished[c]) continue;
     Vec x = chi_.col(c);
     const GmresResult res = gmres(A, M, sys_.G.col(c), x, tol[c], o.gmres_restart,
-                                  o.gmres_max_iterations, solve_floor());
+                                  o.gmres_max_iterations, floor);
     if (!res.converged)
       throw NumericalError(fmt::format(
           "micro unit: characteristic mode {} did not converge (GMRES residual {:.3e} after "
           "{} iterations, target {:.3e}, round-off floor {:.3e})",
-          c, res.residual, res.iterations, tol[c], solve_floor()(x)));
+          c, res.residual, res.iterations, tol[c], floor(x)));
     chi_.col(c) = x;
     last_chi_solve_.gmres_iterations += res.iterations;
   }

@@ -75,8 +75,9 @@ class MicroUnit final : public PointModel {
   const Eigen::MatrixXd& chi() const { return chi_; }
   const System& system() const { return sys_; }
   int refresh_count() const { return refresh_count_; }
-  /// How the last refresh reached χ: rounds of block refinement (0 with an exact factor)
-  /// and GMRES iterations spent on columns refinement left above the tolerance.
+  /// How the last refresh reached χ: rounds of block refinement (0 when the factor's
+  /// solve already meets the tolerance or the round-off floor, as an exact factor's does)
+  /// and GMRES iterations spent on columns refinement left open.
   struct ChiSolve {
     int refinement_rounds = 0;
     int gmres_iterations = 0;

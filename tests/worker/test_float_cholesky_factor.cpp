@@ -146,6 +146,26 @@ TEST(FloatCholeskyFactor, DiagonalScalingKeepsBadlyScaledMatricesInRange) {
   // Compared in the scaled unknowns, where all components are of one size.
   const Eigen::MatrixXd ref = d.asDiagonal() * exact.solve(B);
   EXPECT_LT(relative_error(d.asDiagonal() * X, ref), 1e-3);
+  // Right-hand sides beyond float's range are normalised before they are rounded.
+  for (const double size : {1e45, 1e-45}) {
+    const Eigen::MatrixXd Bs = size * B;
+    Eigen::MatrixXd Xs(n, 3);
+    f->solve(Bs.data(), Xs.data(), 3);
+    EXPECT_LT(relative_error(d.asDiagonal() * Xs, size * ref), 1e-3) << size;
+  }
+}
+
+TEST(FloatCholeskyFactor, NonFiniteEntriesAreRefusedNamingTheEntry) {
+  SparseMatrix K = grid_matrix(4, 1.0, 10);
+  K.coeffRef(7, 4) = std::nan("");
+  auto f = make_float_cholesky_factor();
+  try {
+    f->factorize(K);
+    FAIL() << "a matrix with a NaN was factored";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("entry (7, 4) = nan"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(f->ready());
 }
 
 TEST(FloatCholeskyFactor, NotPositiveDefiniteIsRefusedNamingTheMinor) {
