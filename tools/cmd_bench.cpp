@@ -47,9 +47,9 @@ int bench_blas(bool suggested_only) {
 }
 
 int bench_unit(const BenchOptions& o) {
+  const BlasCore core = blas_core();
   // On stderr: stdout is the JSON document.
-  if (const std::string w = blas_core_warning(blas_core()); !w.empty())
-    fmt::print(stderr, "warning: {}\n", w);
+  if (const std::string w = blas_core_warning(core); !w.empty()) fmt::print(stderr, "warning: {}\n", w);
   const int n = std::max(2, static_cast<int>(std::lround(std::cbrt(o.dofs / 3.0))));
   CellLayout layout;
   layout.kind = o.cell;
@@ -162,7 +162,6 @@ int bench_unit(const BenchOptions& o) {
     j["single"] = js;
   }
   const char* blas = std::getenv("OPENBLAS_NUM_THREADS");
-  const BlasCore core = blas_core();
   j["openblas_core"] = core.name;
   j["resolution"] = n;
   j["cell"] = o.cell;

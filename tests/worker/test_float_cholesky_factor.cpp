@@ -155,43 +155,53 @@ TEST(FloatCholeskyFactor, DiagonalScalingKeepsBadlyScaledMatricesInRange) {
   }
 }
 
-TEST(FloatCholeskyFactor, NonFiniteEntriesAreRefusedNamingTheEntry) {
-  SparseMatrix K = grid_matrix(4, 1.0, 10);
-  K.coeffRef(7, 4) = std::nan("");
+// The NumericalError factorizing K throws ("factored" if none); the factor must not be
+// left ready.
+std::string refusal(const SparseMatrix& K) {
   auto f = make_float_cholesky_factor();
   try {
     f->factorize(K);
-    FAIL() << "a matrix with a NaN was factored";
   } catch (const NumericalError& e) {
-    EXPECT_NE(std::string(e.what()).find("entry (7, 4) = nan"), std::string::npos) << e.what();
+    EXPECT_FALSE(f->ready());
+    return e.what();
   }
-  EXPECT_FALSE(f->ready());
+  return "factored";
+}
+
+TEST(FloatCholeskyFactor, NonFiniteEntriesAreRefusedNamingTheEntry) {
+  SparseMatrix K = grid_matrix(4, 1.0, 10);
+  K.coeffRef(7, 4) = std::nan("");
+  const std::string e = refusal(K);
+  EXPECT_NE(e.find("entry (7, 4) = nan"), std::string::npos) << e;
 }
 
 TEST(FloatCholeskyFactor, NotPositiveDefiniteIsRefusedNamingTheMinor) {
   SparseMatrix K = grid_matrix(5, 1.0, 8);
   // Make the 3×3 block of node 10 indefinite: a negative pivot appears while factoring.
   for (int r = 30; r < 33; ++r) K.coeffRef(r, r) = -50.0;
-  auto f = make_float_cholesky_factor();
-  try {
-    f->factorize(K);
-    FAIL() << "an indefinite matrix was factored";
-  } catch (const NumericalError& e) {
-    EXPECT_NE(std::string(e.what()).find("diagonal entry 30"), std::string::npos) << e.what();
-  }
-  EXPECT_FALSE(f->ready());
+  std::string e = refusal(K);
+  EXPECT_NE(e.find("diagonal entry 30"), std::string::npos) << e;
   // Positive diagonal but indefinite: the breakdown is found by spotrf.
   SparseMatrix J = grid_matrix(5, 1.0, 9);
   for (int k = 0; k < J.outerSize(); ++k)
     for (SparseMatrix::InnerIterator it(J, k); it; ++it)
       if (it.row() != it.col()) it.valueRef() *= -3.0;
-  try {
-    f = make_float_cholesky_factor();
-    f->factorize(J);
-    FAIL() << "an indefinite matrix was factored";
-  } catch (const NumericalError& e) {
-    EXPECT_NE(std::string(e.what()).find("leading minor"), std::string::npos) << e.what();
-  }
+  e = refusal(J);
+  EXPECT_NE(e.find("leading minor"), std::string::npos) << e;
+  EXPECT_NE(e.find("at DOF"), std::string::npos) << e;
+}
+
+TEST(FloatCholeskyFactor, AChangedPatternIsRefused) {
+  const SparseMatrix K = grid_matrix(4, 1.0, 11);
+  SparseMatrix K2 = K;
+  K2.coeffRef(0, K.cols() - 1) = 0.0;  // a new entry, upper triangle only: nnz + 1
+  K2.makeCompressed();
+  auto f = make_float_cholesky_factor();
+  f->factorize(K);
+  EXPECT_THROW(f->factorize(K2), Error);
+  EXPECT_TRUE(f->ready());  // refused before anything is overwritten: K's factor stays
+  f->factorize(K);          // and the analysis is intact
+  EXPECT_TRUE(f->ready());
 }
 
 }  // namespace
