@@ -3,7 +3,8 @@
 // iteration with the cached factor (assembly, Step 1 GMRES, Eqs. 7 and 9) when K is
 // the factored matrix, and when Z̄ has moved on by --stale-stretch and ten times that;
 // a refresh (numeric factorization plus the 9 characteristic-mode solves); and
-// CHOLMOD's own numeric factorization of the same matrix for comparison. With
+// CHOLMOD's own numeric factorization of the same matrix for comparison; and a
+// unit's whole Newton solve on fresh factors, iteration by iteration. With
 // --single, the same figures for a second unit whose factor is single precision
 // (--single-factor: the supernodal float LLᵀ or MUMPS, with --blr-tolerance block
 // low-rank), under "single".
@@ -24,6 +25,9 @@
 namespace fe2::cli {
 
 namespace {
+// The runs' default micro_rtol: the bench's Newton solve stops where a run's would.
+constexpr double kNewtonRtol = 1e-8;
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
@@ -61,6 +65,8 @@ int bench_unit(const BenchOptions& o) {
   opt.refresh = MicroSolverOptions::Refresh::fixed;
   opt.N_t = 1 << 30;  // refreshes only when the benchmark asks
   opt.factorization = MicroSolverOptions::Factorization::cholesky;
+  opt.gmres_forcing = o.gmres_forcing == "constant" ? MicroSolverOptions::Forcing::constant
+                                                    : MicroSolverOptions::Forcing::residual;
   Vec9 Z0 = Vec9::Zero();
   Z0[0] = 0.05;  // 5 % fibre stretch
 
@@ -122,6 +128,28 @@ int bench_unit(const BenchOptions& o) {
       }
     }
     if (cholmod) *cholmod_ms = median(factorize);
+
+    // A whole Newton solve of a second unit from w = 0 at Z̄ = Z0, refreshing at every
+    // iteration: each iteration runs on a fresh factor at the Step 1 tolerance the run
+    // would ask there (gmres_forcing), from far (large ‖r‖/r_ref) to converged.
+    MicroUnit newton(model);
+    json newton_its = json::array();
+    std::vector<double> newton_ms;
+    proto::JobInput nj;
+    nj.step = 1;
+    nj.Zbar = Z0;
+    nj.apply_update = 1;
+    nj.force_refresh = 1;
+    for (nj.iteration = 0; nj.iteration < 12; ++nj.iteration) {
+      const proto::JobOutput out = newton.iterate(nj);
+      const double relative = out.r_norm / out.r_ref;
+      if (relative <= kNewtonRtol) break;  // converged: the run would not solve again
+      newton_ms.push_back(1e3 * (out.cpu_seconds - out.cpu_refresh));
+      newton_its.push_back({{"relative_residual", relative},
+                            {"step1_rtol", uo.step1_rtol(relative)},
+                            {"gmres_iterations", out.gmres_iterations},
+                            {"ms", newton_ms.back()}});
+    }
     json j = {{"factor", unit.factor()->name()},
               {"assembly_ms", median(assembly)},
               {"iteration_ms", median(iteration)},
@@ -131,6 +159,8 @@ int bench_unit(const BenchOptions& o) {
               {"iteration_stale_gmres_iterations", median(gmres_stale)},
               {"iteration_10x_staler_ms", median(iteration_staler)},
               {"iteration_10x_staler_gmres_iterations", median(gmres_staler)},
+              {"newton_fresh_iteration_ms", median(newton_ms)},
+              {"newton_fresh", newton_its},
               {"refresh_ms", median(refresh)},
               {"refresh_over_factorize", median(refresh) / *cholmod_ms},
               {"first_refresh_with_analysis_ms", first_ms},
@@ -167,6 +197,7 @@ int bench_unit(const BenchOptions& o) {
   j["cell"] = o.cell;
   j["repeat"] = o.repeat;
   j["stale_stretch"] = o.stale_stretch;
+  j["gmres_forcing"] = o.gmres_forcing;
   j["OPENBLAS_NUM_THREADS"] = blas ? blas : "unset";
   j["timer"] = "thread CPU time";
   fmt::print("{}\n", j.dump(2));

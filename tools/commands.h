@@ -34,6 +34,7 @@ struct BenchOptions {
   bool single = false;           ///< also time a unit with a single-precision factor
   std::string single_factor = "supernodal";  ///< which: "supernodal" or "mumps"
   double blr_tolerance = 0.0;    ///< MUMPS's block low-rank threshold (0: full rank)
+  std::string gmres_forcing = "residual";  ///< Step 1 tolerance: "constant" or "residual"
 };
 int bench_unit(const BenchOptions& o);
 /// `fe2heart bench blas`: OpenBLAS's kernels, the CPU's vector extension and a better

@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
   c_bench_unit->add_option("--blr-tolerance", bench.blr_tolerance,
                            "block low-rank threshold of a MUMPS factor (0: full rank)")
       ->check(CLI::Range(0.0, 0.5));
+  c_bench_unit->add_option("--gmres-forcing", bench.gmres_forcing,
+                           "Step 1 tolerance: gmres_rtol always, or the inexact-Newton forcing")
+      ->check(CLI::IsMember({"constant", "residual"}));
 
   bool blas_suggested_only = false;
   auto* c_bench_blas = c_bench->add_subcommand(

@@ -18,6 +18,15 @@
 
 namespace fe2 {
 
+double MicroSolverOptions::step1_rtol(double relative_residual) const {
+  if (gmres_forcing == Forcing::constant) return gmres_rtol;
+  // Inexact Newton (Dembo, Eisenstat & Steihaug 1982): solving Step 1 to η_k ∝ ‖r_k‖
+  // keeps Newton's quadratic convergence, and the coupled iteration with a kept factor is
+  // only linear anyway. Far from the answer a loose solve is enough; near it η reaches
+  // gmres_rtol. The answer is fixed by the residual test, not by η.
+  return std::clamp(relative_residual, gmres_rtol, gmres_forcing_max);
+}
+
 MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   MicroSolverOptions o;
   const std::string f = s.choice("factorization", "auto", {"cholesky", "lu", "auto"},
@@ -40,6 +49,16 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.step4 = s.boolean("step4", true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves");
   o.gmres_rtol = s.number("gmres_rtol", 1e-10, Range{0.0, 1.0, true, true},
                           "Step 1 relative residual tolerance");
+  o.gmres_forcing = s.choice("gmres_forcing", "residual", {"constant", "residual"},
+                             "Step 1 tolerance over a Newton solve: gmres_rtol every "
+                             "iteration, or the inexact-Newton forcing η = ‖r‖/r_ref "
+                             "between gmres_rtol and gmres_forcing_max") == "constant"
+                        ? Forcing::constant
+                        : Forcing::residual;
+  o.gmres_forcing_max = s.number("gmres_forcing_max", 1e-4, Range{0.0, 1.0, true, true},
+                                 "loosest Step 1 tolerance of the residual forcing");
+  if (o.gmres_forcing_max < o.gmres_rtol)
+    s.fail("gmres_forcing_max", fmt::format("at least gmres_rtol ({:g})", o.gmres_rtol));
   o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");
   o.gmres_max_iterations =
       s.integer("gmres_max_iterations", 500, Range::closed(1, 1e6), "GMRES iteration cap");

@@ -29,7 +29,12 @@ struct MicroSolverOptions {
   Refresh refresh = Refresh::collective;  ///< BENCHMARKS "How often to refactor"
   int N_t = 10;              ///< fixed policy: refresh at iteration 1 of every N_t-th step
   bool step4 = true;         ///< Eq. (11): δw = δw₁ − χ ΔZ̄
-  double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖
+  double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖ (the tightest it asks)
+  /// Step 1's tolerance over a Newton solve: constant (gmres_rtol), or `residual`, the
+  /// inexact-Newton forcing η = ‖r‖/r_ref within [gmres_rtol, gmres_forcing_max].
+  enum class Forcing { constant, residual };
+  Forcing gmres_forcing = Forcing::residual;
+  double gmres_forcing_max = 1e-4;
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
   /// The factor in single precision, used only as the GMRES preconditioner: the answer
@@ -38,6 +43,9 @@ struct MicroSolverOptions {
   bool single_precision = false;
   bool single_factor_mumps = false;
   double blr_tolerance = 0.0;  ///< single precision only: block low-rank threshold, 0 = off
+
+  /// Step 1's relative tolerance η at a unit residual ‖r‖/r_ref = `relative_residual`.
+  double step1_rtol(double relative_residual) const;
 
   /// Reads /.../solver; every key optional.
   static MicroSolverOptions from_spec(SpecNode node);

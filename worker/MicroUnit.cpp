@@ -293,7 +293,7 @@ ResidualFloor MicroUnit::solve_floor() const {
   return [this](const Vec& x) { return kSolveFloorFactor * std::numeric_limits<double>::epsilon() * abs_K_times(x).norm(); };
 }
 
-GmresResult MicroUnit::step1() {
+GmresResult MicroUnit::step1(double rtol) {
   const auto& o = model_->options();
   const Vec b = -sys_.r;
   dw1_.setZero();
@@ -301,7 +301,7 @@ GmresResult MicroUnit::step1() {
   if (bnorm == 0.0) return {0, 0.0, true};
   const LinearOp A = [this](const Vec& x, Vec& y) { y.noalias() = sys_.K * x; };
   const LinearOp M = [this](const Vec& x, Vec& y) { factor_->solve(x.data(), y.data(), 1); };
-  return gmres(A, M, b, dw1_, o.gmres_rtol * bnorm, o.gmres_restart, o.gmres_max_iterations, solve_floor());
+  return gmres(A, M, b, dw1_, rtol * bnorm, o.gmres_restart, o.gmres_max_iterations, solve_floor());
 }
 
 proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
@@ -347,10 +347,11 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
     rebuild_factor();
     out.factor_rebuilt = 1;
   }
+  const double rtol = model_->options().step1_rtol(r_norm / r_ref);
   GmresResult res;
   {
     ScopedCpuTimer t(out.cpu_solve);  // Fig. 6 (c2)
-    res = step1();
+    res = step1(rtol);
   }
   if (!res.converged && !refreshed) {  // a stale preconditioner gave up: refresh once
     {
@@ -360,7 +361,7 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
     refreshed = true;
     ScopedCpuTimer t(out.cpu_solve);
     const int before = res.iterations;
-    res = step1();
+    res = step1(rtol);
     res.iterations += before;
   }
   if (!res.converged)

@@ -96,7 +96,8 @@ class MicroUnit final : public PointModel {
   bool refresh_due(const proto::JobInput& in) const;
   void refresh();
   void rebuild_factor();
-  GmresResult step1();
+  /// Step 1 (Fig. 6 c2): K δw₁ = −r to ‖K δw₁ + r‖ ≤ rtol ‖r‖.
+  GmresResult step1(double rtol);
   /// ‖r‖ below which the residual is round-off of the assembly (JobOutput::r_floor).
   double residual_floor() const;
   /// |K|·|v| (entrywise absolute values): the scale of round-off in K·v.

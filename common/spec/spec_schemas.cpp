@@ -124,6 +124,13 @@ Schema micro_unit() {
                                     "refresh period in steps (fixed policy)")},
                     {"step4", boolean(true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves")},
                     {"gmres_rtol", number(1e-10, kOpenUnit, "Step 1 relative residual tolerance")},
+                    {"gmres_forcing",
+                     choice("residual", {"constant", "residual"},
+                            "Step 1 tolerance over a Newton solve: gmres_rtol every iteration, or "
+                            "the inexact-Newton forcing η = ‖r‖/r_ref between gmres_rtol and "
+                            "gmres_forcing_max")},
+                    {"gmres_forcing_max",
+                     number(1e-4, kOpenUnit, "loosest Step 1 tolerance of the residual forcing")},
                     {"gmres_restart", integer(50, Range::closed(1, 1000), "GMRES restart length")},
                     {"gmres_max_iterations",
                      integer(500, Range::closed(1, 1e6), "GMRES iteration cap")},
