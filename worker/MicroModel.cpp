@@ -24,7 +24,7 @@ double MicroSolverOptions::step1_rtol(double relative_residual) const {
   // keeps Newton's quadratic convergence, and the coupled iteration with a kept factor is
   // only linear anyway. Far from the answer a loose solve is enough; near it η reaches
   // gmres_rtol. The answer is fixed by the residual test, not by η.
-  return std::clamp(relative_residual, gmres_rtol, gmres_forcing_max);
+  return std::max(gmres_rtol, std::min(relative_residual, gmres_forcing_max));
 }
 
 MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
@@ -55,8 +55,11 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
                              "between gmres_rtol and gmres_forcing_max") == "constant"
                         ? Forcing::constant
                         : Forcing::residual;
-  o.gmres_forcing_max = s.number("gmres_forcing_max", 1e-4, Range{0.0, 1.0, true, true},
-                                 "loosest Step 1 tolerance of the residual forcing");
+  // A spec that loosens only gmres_rtol beyond 1e-4 keeps a consistent pair.
+  o.gmres_forcing_max = s.number("gmres_forcing_max", std::max(1e-4, o.gmres_rtol),
+                                 Range{0.0, 1.0, true, true},
+                                 "loosest Step 1 tolerance of the residual forcing (default "
+                                 "1e-4, or gmres_rtol if that is larger)");
   if (o.gmres_forcing_max < o.gmres_rtol)
     s.fail("gmres_forcing_max", fmt::format("at least gmres_rtol ({:g})", o.gmres_rtol));
   o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");

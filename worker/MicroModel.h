@@ -34,7 +34,7 @@ struct MicroSolverOptions {
   /// inexact-Newton forcing η = ‖r‖/r_ref within [gmres_rtol, gmres_forcing_max].
   enum class Forcing { constant, residual };
   Forcing gmres_forcing = Forcing::residual;
-  double gmres_forcing_max = 1e-4;
+  double gmres_forcing_max = 1e-4;  ///< if below gmres_rtol, Step 1 uses gmres_rtol
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
   /// The factor in single precision, used only as the GMRES preconditioner: the answer

@@ -130,7 +130,8 @@ Schema micro_unit() {
                             "the inexact-Newton forcing η = ‖r‖/r_ref between gmres_rtol and "
                             "gmres_forcing_max")},
                     {"gmres_forcing_max",
-                     number(1e-4, kOpenUnit, "loosest Step 1 tolerance of the residual forcing")},
+                     number(1e-4, kOpenUnit, "loosest Step 1 tolerance of the residual forcing (default "
+                                  "1e-4, or gmres_rtol if that is larger)")},
                     {"gmres_restart", integer(50, Range::closed(1, 1000), "GMRES restart length")},
                     {"gmres_max_iterations",
                      integer(500, Range::closed(1, 1e6), "GMRES iteration cap")},
