@@ -185,6 +185,7 @@ int bench_unit(const BenchOptions& o) {
     MicroSolverOptions s = opt;
     s.single_precision = true;
     s.single_factor_mumps = o.single_factor == "mumps";
+    s.half_storage = o.single_factor == "half";
     if (o.blr_tolerance > 0 && !s.single_factor_mumps)
       throw InputError(fmt::format("--blr-tolerance {} needs --single-factor mumps (block "
                                    "low-rank is a MUMPS option)", o.blr_tolerance));

@@ -94,8 +94,9 @@ int main(int argc, char** argv) {
   c_bench_unit->add_flag("--single", bench.single,
                          "also time a unit whose factor is single precision");
   c_bench_unit->add_option("--single-factor", bench.single_factor,
-                           "that factor: supernodal LLᵀ on CHOLMOD's analysis, or MUMPS")
-      ->check(CLI::IsMember({"supernodal", "mumps"}));
+                           "that factor: supernodal LLᵀ on CHOLMOD's analysis, the same "
+                           "kept in binary16 (half), or MUMPS")
+      ->check(CLI::IsMember({"supernodal", "half", "mumps"}));
   c_bench_unit->add_option("--blr-tolerance", bench.blr_tolerance,
                            "block low-rank threshold of a MUMPS factor (0: full rank)")
       ->check(CLI::Range(0.0, 0.5));

@@ -65,11 +65,13 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");
   o.gmres_max_iterations =
       s.integer("gmres_max_iterations", 500, Range::closed(1, 1e6), "GMRES iteration cap");
-  o.single_precision =
-      s.choice("precision", "double", {"double", "single"},
+  const std::string precision =
+      s.choice("precision", "double", {"double", "single", "half"},
                "precision of the factor of K (the GMRES preconditioner): double (CHOLMOD/"
-               "UMFPACK) or single (half the memory; residuals and answer stay double)") ==
-      "single";
+               "UMFPACK), single (half the memory) or half (the single LLᵀ kept in IEEE "
+               "binary16: a quarter); residuals and answer stay double");
+  o.single_precision = precision != "double";
+  o.half_storage = precision == "half";
   o.single_factor_mumps =
       s.choice("single_factor", "supernodal", {"supernodal", "mumps"},
                "single-precision factor: supernodal LLᵀ on CHOLMOD's analysis (the LLᵀ kind; "
@@ -77,6 +79,9 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   o.blr_tolerance = s.number("blr_tolerance", 0.0, Range{0.0, 1.0, false, true},
                              "block low-rank threshold of the single-precision MUMPS factor "
                              "(CNTL(7)); 0 = full rank");
+  if (o.half_storage && o.single_factor_mumps)
+    s.fail("single_factor", "\"supernodal\" with \"precision\": \"half\" (MUMPS keeps its "
+                            "factor in single precision)");
   if (o.blr_tolerance > 0 && !(o.single_precision && o.single_factor_mumps))
     s.fail("blr_tolerance", "0 unless \"precision\" is \"single\" and \"single_factor\" is "
                             "\"mumps\" (block low-rank is a MUMPS option)");
@@ -167,7 +172,8 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
   const bool lu = plan.options.factorization == MicroSolverOptions::Factorization::lu ||
                   (plan.options.factorization == MicroSolverOptions::Factorization::automatic &&
                    !symmetric);
-  plan.memory = estimate_micro_memory(cells, nodes, elements, lu, plan.options.single_precision);
+  plan.memory = estimate_micro_memory(cells, nodes, elements, lu, plan.options.single_precision,
+                                      plan.options.half_storage);
   return plan;
 }
 
@@ -329,7 +335,7 @@ FactorKind MicroModel::initial_factor_kind() const {
 
 std::unique_ptr<SparseFactor> MicroModel::make_factor(FactorKind kind) const {
   if (options_.single_precision && kind == FactorKind::cholesky && !options_.single_factor_mumps)
-    return make_float_cholesky_factor();
+    return make_float_cholesky_factor(options_.half_storage);
   if (options_.single_precision)
     return make_mumps_single_factor(kind == FactorKind::cholesky, options_.blr_tolerance);
   return make_sparse_factor(kind);

@@ -42,6 +42,9 @@ struct MicroSolverOptions {
   /// float LLᵀ (worker/FloatCholeskyFactor.h) unless single_factor_mumps; LU is MUMPS.
   bool single_precision = false;
   bool single_factor_mumps = false;
+  /// precision "half": the supernodal float LLᵀ kept in IEEE binary16 between solves (a
+  /// quarter of the double factor's bytes); factored in float, LU stays MUMPS single.
+  bool half_storage = false;
   double blr_tolerance = 0.0;  ///< single precision only: block low-rank threshold, 0 = off
 
   /// Step 1's relative tolerance η at a unit residual ‖r‖/r_ref = `relative_residual`.

@@ -69,7 +69,7 @@ double fill_entries(std::array<long long, 3> cells) {
 }
 
 MicroMemoryEstimate estimate_micro_memory(std::array<long long, 3> cells, long long nodes,
-                                          long long elements, bool lu, bool single) {
+                                          long long elements, bool lu, bool single, bool half) {
   MicroMemoryEstimate m;
   m.nodes = nodes;
   m.elements = elements;
@@ -77,7 +77,7 @@ MicroMemoryEstimate estimate_micro_memory(std::array<long long, 3> cells, long l
   m.pattern_nnz = std::min(81.0 * m.dofs, static_cast<double>(m.dofs) * m.dofs);
   m.factor_entries = fill_entries(cells) * (lu ? 2.0 : 1.0);
   m.model_bytes = kPerElementModel * elements + kPerNodeModel * nodes + kPerNonzeroModel * m.pattern_nnz;
-  m.factor_bytes = kPerFactorEntry * m.factor_entries * (single ? 0.5 : 1.0);
+  m.factor_bytes = kPerFactorEntry * m.factor_entries * (!single ? 1.0 : half && !lu ? 0.25 : 0.5);
   m.unit_bytes = kPerDofUnit * m.dofs + kPerNonzeroUnit * m.pattern_nnz + m.factor_bytes;
   return m;
 }

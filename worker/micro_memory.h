@@ -46,10 +46,12 @@ double fill_entries(std::array<long long, 3> cells);
 
 /// The estimate for a unit of `cells` hexahedra per axis: a structured grid (built-in
 /// cells), or the equivalent grid of a mesh file (same element count and aspect ratio).
-/// `lu`: the factor is UMFPACK LU rather than CHOLMOD LLᵀ. `single`: it is MUMPS's
-/// single-precision factor (4-byte values: counted as half the double factor's bytes).
+/// `lu`: the factor is UMFPACK LU rather than CHOLMOD LLᵀ. `single`: it is a
+/// single-precision factor (4-byte values: counted as half the double factor's bytes);
+/// `half` with it: an LLᵀ factor kept in binary16 (a quarter; LU stays single).
 MicroMemoryEstimate estimate_micro_memory(std::array<long long, 3> cells, long long nodes,
-                                          long long elements, bool lu, bool single = false);
+                                          long long elements, bool lu, bool single = false,
+                                          bool half = false);
 
 /// "310 MB", "5.4 GB".
 std::string format_bytes(double bytes);

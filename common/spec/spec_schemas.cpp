@@ -136,10 +136,11 @@ Schema micro_unit() {
                     {"gmres_max_iterations",
                      integer(500, Range::closed(1, 1e6), "GMRES iteration cap")},
                     {"precision",
-                     choice("double", {"double", "single"},
+                     choice("double", {"double", "single", "half"},
                             "precision of the factor of K (the GMRES preconditioner): double "
-                            "(CHOLMOD/UMFPACK) or single (half the memory; residuals and answer "
-                            "stay double)")},
+                            "(CHOLMOD/UMFPACK), single (half the memory) or half (the single "
+                            "LLᵀ kept in IEEE binary16: a quarter); residuals and answer stay "
+                            "double")},
                     {"single_factor",
                      choice("supernodal", {"supernodal", "mumps"},
                             "single-precision factor: supernodal LLᵀ on CHOLMOD's analysis (the "

@@ -111,6 +111,46 @@ TEST(FloatCholeskyFactor, SolvesToFloatAccuracyForOneAndManyRightHandSides) {
   EXPECT_GT(f->factor_bytes(), 0.0);
 }
 
+// Kept in binary16 (precision "half"): the solves convert 64 columns at a time, so the
+// grid is large enough for supernodes of several panels (its top separator has 363
+// columns). Coarser than float but still a preconditioner that contracts the error.
+TEST(FloatCholeskyFactor, HalfStorageSolvesToHalfAccuracyInPanels) {
+  const SparseMatrix K = grid_matrix(11, 1e2, 11);
+  const Eigen::MatrixXd B = random_columns(K.rows(), 9, 12);
+  Eigen::SimplicialLDLT<SparseMatrix> exact(K);
+  ASSERT_EQ(exact.info(), Eigen::Success);
+  const Eigen::MatrixXd X_ref = exact.solve(B);
+  auto single = make_float_cholesky_factor();
+  auto half = make_float_cholesky_factor(true);
+  // Refactored once: the second factorization rebuilds the float values it released.
+  half->factorize(grid_matrix(11, 10.0, 13));
+  half->factorize(K);
+  single->factorize(K);
+  EXPECT_EQ(half->name(), "supernodal_single_llt_half_storage");
+  EXPECT_NEAR(half->factor_bytes() / single->factor_bytes(), 0.5, 0.1);
+  Eigen::MatrixXd Xs(K.rows(), 9), X(K.rows(), 9), Xc(K.rows(), 9);
+  single->solve(B.data(), Xs.data(), 9);
+  half->solve(B.data(), X.data(), 9);
+  for (int c = 0; c < 9; ++c) half->solve(B.col(c).data(), Xc.col(c).data(), 1);
+  const double err_single = relative_error(Xs, X_ref), err = relative_error(X, X_ref);
+  fmt::print("relative error: float {:.2e}, binary16 {:.2e}\n", err_single, err);
+  // binary16 rounds L to 5e-4 relative: the answer moves from the float factor's by
+  // about that (a factor silently kept in float would give the same bits), and stays far
+  // better than a missing panel update (O(1)). (On this matrix the float answer errs by
+  // 1.5e-4 already: K's condition times float's rounding of S K S.)
+  EXPECT_GT(relative_error(X, Xs), 1e-5);
+  EXPECT_GT(err, err_single);
+  EXPECT_LT(err, 0.05);
+  // The strsv/sgemv panels agree with the strsm/sgemm panels to float round-off.
+  EXPECT_LT(relative_error(Xc, X), 1e-4);
+  // One refinement step contracts the residual at least tenfold.
+  const Eigen::MatrixXd R = B - K * X;
+  Eigen::MatrixXd D(K.rows(), 9);
+  half->solve(R.data(), D.data(), 9);
+  const double r0 = R.norm() / B.norm(), r1 = (B - K * (X + D)).norm() / B.norm();
+  EXPECT_LT(r1, 0.1 * r0) << "r0 " << r0 << " r1 " << r1;
+}
+
 TEST(FloatCholeskyFactor, RefactorizationReplacesTheValues) {
   const SparseMatrix K1 = grid_matrix(7, 10.0, 3);
   const SparseMatrix K2 = grid_matrix(7, 1e2, 4);  // same pattern, other values

@@ -86,6 +86,21 @@ TEST(SinglePrecisionFactor, SameHomogenizedAnswerAsDoubleFactor) {
   expect_same_answer(lu, dbl);
 }
 
+// precision "half": the float factor kept in binary16 is a coarser preconditioner (more
+// GMRES iterations than float), and the answer is still the double one.
+TEST(SinglePrecisionFactor, HalfStorageGivesTheSameAnswer) {
+  const UnitRun dbl = run({});
+  MicroSolverOptions o;
+  o.single_precision = true;
+  const UnitRun sgl = run(o);
+  o.half_storage = true;
+  const UnitRun half = run(o);
+  EXPECT_EQ(half.factor, "supernodal_single_llt_half_storage");
+  EXPECT_GT(half.out[0].gmres_iterations, 1);
+  EXPECT_GT(half.gmres, sgl.gmres);
+  expect_same_answer(half, dbl);
+}
+
 TEST(SinglePrecisionFactor, SupernodalFloatLltGivesTheSameAnswer) {
   const UnitRun dbl = run({});
   MicroSolverOptions o;
@@ -189,9 +204,9 @@ TEST(SinglePrecisionFactor, SpecKeysAreReadAndBadValuesRefused) {
   const MicroModelPlan d = plan_with(nlohmann::json::object());
   EXPECT_NEAR(p.memory.factor_bytes, 0.5 * d.memory.factor_bytes, 1e-9 * d.memory.factor_bytes);
 
-  std::string e = refusal({{"precision", "half"}});
+  std::string e = refusal({{"precision", "quarter"}});
   EXPECT_NE(e.find("/unit/solver/precision"), std::string::npos) << e;
-  EXPECT_NE(e.find("half"), std::string::npos) << e;
+  EXPECT_NE(e.find("quarter"), std::string::npos) << e;
   e = refusal({{"precision", "single"}, {"single_factor", "mumps"}, {"blr_tolerance", 1.5}});
   EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
   e = refusal({{"blr_tolerance", 1e-6}});
@@ -201,6 +216,14 @@ TEST(SinglePrecisionFactor, SpecKeysAreReadAndBadValuesRefused) {
   e = refusal({{"precision", "single"}, {"blr_tolerance", 1e-6}});
   EXPECT_NE(e.find("/unit/solver/blr_tolerance"), std::string::npos) << e;
   EXPECT_NE(e.find("\"single_factor\" is \"mumps\""), std::string::npos) << e;
+  // "half" is the supernodal factor kept in binary16: a quarter of the double bytes.
+  const MicroModelPlan h = plan_with({{"precision", "half"}});
+  EXPECT_TRUE(h.options.single_precision);
+  EXPECT_TRUE(h.options.half_storage);
+  EXPECT_NEAR(h.memory.factor_bytes, 0.25 * d.memory.factor_bytes, 1e-9 * d.memory.factor_bytes);
+  e = refusal({{"precision", "half"}, {"single_factor", "mumps"}});
+  EXPECT_NE(e.find("/unit/solver/single_factor"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"precision\": \"half\""), std::string::npos) << e;
   e = refusal({{"precision", "single"}, {"single_factor", "pardiso"}});
   EXPECT_NE(e.find("/unit/solver/single_factor"), std::string::npos) << e;
 }
