@@ -71,12 +71,17 @@ double relative_error(const Eigen::MatrixXd& X, const Eigen::MatrixXd& X_ref) {
   return (X - X_ref).norm() / X_ref.norm();
 }
 
+// K⁻¹ B by a double LDLᵀ: the reference the float factors are held to.
+Eigen::MatrixXd double_solve(const SparseMatrix& K, const Eigen::MatrixXd& B) {
+  Eigen::SimplicialLDLT<SparseMatrix> exact(K);
+  EXPECT_EQ(exact.info(), Eigen::Success);
+  return exact.solve(B);
+}
+
 TEST(FloatCholeskyFactor, SolvesToFloatAccuracyForOneAndManyRightHandSides) {
   const SparseMatrix K = grid_matrix(9, 1e3, 1);
   const Eigen::MatrixXd B = random_columns(K.rows(), 9, 2);
-  Eigen::SimplicialLDLT<SparseMatrix> exact(K);
-  ASSERT_EQ(exact.info(), Eigen::Success);
-  const Eigen::MatrixXd X_ref = exact.solve(B);
+  const Eigen::MatrixXd X_ref = double_solve(K, B);
 
   auto f = make_float_cholesky_factor();
   f->factorize(K);
@@ -117,9 +122,7 @@ TEST(FloatCholeskyFactor, SolvesToFloatAccuracyForOneAndManyRightHandSides) {
 TEST(FloatCholeskyFactor, HalfStorageSolvesToHalfAccuracyInPanels) {
   const SparseMatrix K = grid_matrix(11, 1e2, 11);
   const Eigen::MatrixXd B = random_columns(K.rows(), 9, 12);
-  Eigen::SimplicialLDLT<SparseMatrix> exact(K);
-  ASSERT_EQ(exact.info(), Eigen::Success);
-  const Eigen::MatrixXd X_ref = exact.solve(B);
+  const Eigen::MatrixXd X_ref = double_solve(K, B);
   auto single = make_float_cholesky_factor();
   auto half = make_float_cholesky_factor(true);
   // Refactored once: the second factorization rebuilds the float values it released.
@@ -161,8 +164,7 @@ TEST(FloatCholeskyFactor, RefactorizationReplacesTheValues) {
   f->factorize(K2);
   Eigen::MatrixXd X(K1.rows(), 2);
   f->solve(B.data(), X.data(), 2);
-  Eigen::SimplicialLDLT<SparseMatrix> exact(K2);
-  EXPECT_LT(relative_error(X, exact.solve(B)), 1e-3);
+  EXPECT_LT(relative_error(X, double_solve(K2, B)), 1e-3);
 }
 
 // Entries from 1e-50 to 1e50 times a well-conditioned matrix: unscaled, the products
