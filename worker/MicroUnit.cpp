@@ -2,6 +2,7 @@
 
 #include "common/cpu_timer.h"
 #include "common/error.h"
+#include "worker/abs_products.h"
 #include "worker/micro_kernel.h"
 
 #include <algorithm>
@@ -262,35 +263,21 @@ void MicroUnit::refresh() {
   ++refresh_count_;
 }
 
-Vec MicroUnit::abs_K_times(const Vec& v) const {
-  const SparseMatrix& K = sys_.K;
-  const int* outer = K.outerIndexPtr();
-  const int* inner = K.innerIndexPtr();
-  const double* value = K.valuePtr();
-  Vec y = Vec::Zero(K.rows());
-  for (Eigen::Index c = 0; c < K.outerSize(); ++c) {
-    const double vc = std::abs(v[c]);
-    if (vc == 0.0) continue;  // Step 1 starts from x = 0: its floor costs nothing
-    for (int k = outer[c]; k < outer[c + 1]; ++k) y[inner[k]] += std::abs(value[k]) * vc;
-  }
-  return y;
-}
-
 double MicroUnit::residual_floor() const {
   // F = I + Z̄ + ∇w is formed to a relative round-off eps·(1 + ‖Z̄‖): the same as moving
   // the nodes by ≈ eps·(1 + ‖Z̄‖)·h, to which the forces answer with |K| times that. No
   // iteration takes ‖r‖ below it (measured 3–30× under this bound at a cell/matrix
   // contrast of 1e3, where it is 1e-10 of r_ref: above a tight micro_rtol).
   const double h = std::cbrt(1.0 / (model_->inv_volume() * model_->num_elements()));
-  const Vec nodes_moved = Vec::Constant(sys_.K.cols(), std::numeric_limits<double>::epsilon() * (1.0 + Zbar_.norm()) * h);
-  return abs_K_times(nodes_moved).norm();
+  const double nodes_moved = std::numeric_limits<double>::epsilon() * (1.0 + Zbar_.norm()) * h;
+  return nodes_moved * abs_row_sums(sys_.K, model_->symmetric()).norm();
 }
 
 ResidualFloor MicroUnit::solve_floor() const {
   // A backward-stable solve of K x = b leaves ‖b − Kx‖ ≈ eps·‖|K||x|‖; when K spans many
   // orders of magnitude (cells stiffened by an exponential law) that is above
   // gmres_rtol·‖b‖, and GMRES would spin to its iteration limit.
-  return [this](const Vec& x) { return kSolveFloorFactor * std::numeric_limits<double>::epsilon() * abs_K_times(x).norm(); };
+  return [this](const Vec& x) { return kSolveFloorFactor * std::numeric_limits<double>::epsilon() * abs_times(sys_.K, x).norm(); };
 }
 
 GmresResult MicroUnit::step1(double rtol) {

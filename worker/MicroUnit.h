@@ -100,8 +100,6 @@ class MicroUnit final : public PointModel {
   GmresResult step1(double rtol);
   /// ‖r‖ below which the residual is round-off of the assembly (JobOutput::r_floor).
   double residual_floor() const;
-  /// |K|·|v| (entrywise absolute values): the scale of round-off in K·v.
-  Vec abs_K_times(const Vec& v) const;
   /// The residual a solve with K can reach at x, for GMRES's stopping test.
   ResidualFloor solve_floor() const;
 

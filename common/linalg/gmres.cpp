@@ -10,7 +10,8 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
   const Eigen::Index n = b.size();
   GmresResult res;
   Vec r(n), w(n);
-  if (x.isZero(0.0))  // the usual start: A·0 = 0 without an operator application
+  const bool from_zero = x.isZero(0.0);
+  if (from_zero)  // the usual start: A·0 = 0 without an operator application
     w.setZero();
   else
     A(x, w);
@@ -30,6 +31,12 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
   Z.reserve(m);
   Eigen::MatrixXd Hm = Eigen::MatrixXd::Zero(m + 1, m);  // Hessenberg, Givens-rotated
   Vec cs(m), sn(m), g(m + 1);
+  // A z₀ of the first cycle from x = 0, before Gram–Schmidt overwrites it: if that cycle
+  // ends after one iteration, x = y₀ z₀ and A x = y₀ (A z₀) to one rounding per entry
+  // (below the floor eps·|A||x|), so the true residual needs no second product. With a
+  // fresh preconditioner that is every Step 1 solve: one operator application, not two.
+  Vec Az0;
+  bool first_cycle = true;
 
   while (res.iterations < max_iterations) {
     if (V.empty()) V.emplace_back(n);
@@ -42,6 +49,7 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
       if (static_cast<int>(V.size()) <= j + 1) V.emplace_back(n);
       Minv(V[j], Z[j]);
       A(Z[j], w);
+      if (first_cycle && from_zero && j == 0) Az0 = w;
       ++res.iterations;
       // Modified Gram–Schmidt
       for (int i = 0; i <= j; ++i) {
@@ -70,7 +78,11 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
     // x += M⁻¹ V y = Z y, with H y = g (upper triangular j x j)
     const Vec y = Hm.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
     for (int i = 0; i < j; ++i) x += y[i] * Z[i];
-    A(x, w);
+    if (first_cycle && from_zero && j == 1)
+      w = y[0] * Az0;
+    else
+      A(x, w);
+    first_cycle = false;
     r = b - w;
     beta = r.norm();
     res.residual = beta;

@@ -3,7 +3,8 @@
 // (Saad, Iterative Methods, Alg. 9.6, FGMRES) so the update costs no extra solve:
 // solves A x = b with x = M⁻¹ y, so the residual it minimises is the true residual
 // b − A x, and the stopping test ‖b − A x‖ ≤ tol is checked on the true residual at
-// every restart. Used for Step 1 (Eq. 8) and stale characteristic modes (Eq. 6) with
+// every restart (after a one-iteration cycle from x = 0 as y₀·(A z₀), the product the
+// iteration already made, so a well-preconditioned solve applies A once). Used for Step 1 (Eq. 8) and stale characteristic modes (Eq. 6) with
 // the unit's cached factor as M⁻¹ (paper Fig. 6, c2 and c3), and for the macro system
 // with a kept MUMPS factor (MacroSolver).
 #include <Eigen/Dense>
