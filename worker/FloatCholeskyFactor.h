@@ -24,7 +24,8 @@ namespace fe2 {
 /// K symmetric positive definite (the LLᵀ kind's contract). factorize() throws
 /// NumericalError naming the leading minor if float LLᵀ of S K S breaks down.
 /// `half_storage` (unit.solver.precision "half"): factored in float, then kept in IEEE
-/// binary16 (half the float factor's bytes; each solve converts 64 columns of a supernode at a time into a float panel).
+/// binary16 (half the float factor's bytes; each solve converts 64 columns of a
+/// supernode at a time into a float panel).
 std::unique_ptr<SparseFactor> make_float_cholesky_factor(bool half_storage = false);
 
 }  // namespace fe2
