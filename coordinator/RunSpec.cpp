@@ -233,7 +233,7 @@ void read_formulation(SpecNode f, RunSpec& spec) {
   f.finish();
 }
 
-void read_models(SpecNode models, SpecNode assign, RunSpec& spec, bool build_units) {
+void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
   const auto names = [&] {
     std::vector<std::string> n;
     for (auto it = models.raw().begin(); it != models.raw().end(); ++it) n.push_back(it.key());
@@ -251,9 +251,9 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec, bool build_uni
                                       "FE² micro unit per point, or the macro law itself");
     if (kind == "fe2") {
       pm.kind = PointModelSpec::Kind::fe2;
+      // Built once /newton has given the unit's tolerance (read_run_spec).
       pm.plan = std::make_shared<const MicroModelPlan>(
           MicroModel::plan(m.child("unit", true, "the micro unit"), spec.base_dir));
-      if (build_units) pm.micro = pm.plan->build();
     } else {
       pm.kind = PointModelSpec::Kind::macro_law;
       SpecNode mat = m.child("material", true, "constitutive law");
@@ -368,7 +368,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
                                                     "mixed displacement–pressure"),
                    spec);
   read_models(root.child("models", true, "point models by name"),
-              root.child("assign", false, "which model each element uses"), spec, build_units);
+              root.child("assign", false, "which model each element uses"), spec);
 
   for (auto& d : root.children("dirichlet", true, "prescribed displacements on node sets")) {
     DirichletSpec ds;
@@ -434,6 +434,13 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
                               "macro residual / max(‖f_int‖, ‖f_ext‖)");
   spec.micro_rtol = n.number("micro_rtol", 1e-8, Range{0.0, 1.0, true, true},
                              "unit residual ‖r‖ / r_ref");
+  for (auto& m : spec.models)  // Step 1's forcing never solves below half of it
+    if (m.plan) {
+      auto plan = std::make_shared<MicroModelPlan>(*m.plan);
+      plan->options.newton_rtol = spec.micro_rtol;
+      m.plan = std::move(plan);
+    }
+  if (build_units) build_unit_models(spec);
   spec.max_cutbacks = n.integer("max_cutbacks", 4, Range::closed(0, 30),
                                 "step halvings before giving up");
   {

@@ -67,6 +67,7 @@ int bench_unit(const BenchOptions& o) {
   opt.refresh = MicroSolverOptions::Refresh::fixed;
   opt.N_t = 1 << 30;  // refreshes only when the benchmark asks
   opt.factorization = MicroSolverOptions::Factorization::cholesky;
+  opt.newton_rtol = kNewtonRtol;
   opt.gmres_forcing = o.gmres_forcing == "constant" ? MicroSolverOptions::Forcing::constant
                                                     : MicroSolverOptions::Forcing::residual;
   Vec9 Z0 = Vec9::Zero();

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 namespace fe2 {
 
@@ -22,9 +23,18 @@ double MicroSolverOptions::step1_rtol(double relative_residual) const {
   if (gmres_forcing == Forcing::constant) return gmres_rtol;
   // Inexact Newton (Dembo, Eisenstat & Steihaug 1982): solving Step 1 to η_k ∝ ‖r_k‖
   // keeps Newton's quadratic convergence, and the coupled iteration with a kept factor is
-  // only linear anyway. Far from the answer a loose solve is enough; near it η reaches
-  // gmres_rtol. The answer is fixed by the residual test, not by η.
-  return std::max(gmres_rtol, std::min(relative_residual, gmres_forcing_max));
+  // only linear anyway. Far from the answer a loose solve is enough; near it η falls
+  // toward gmres_rtol. The answer is fixed by the residual test, not by η.
+  //
+  // Kelley's safeguard (Iterative Methods for Linear and Nonlinear Equations, 1995,
+  // Eq. 6.20): no solve for a residual below half the Newton tolerance, η ≥
+  // 0.5·newton_rtol/(‖r‖/r_ref). The last iteration of a solve, already converged, then
+  // takes the loosest η instead of gmres_rtol (1 GMRES iteration on a fresh float factor,
+  // not 3): its δw₁ is applied only if another iteration follows, where a residual
+  // under 0.5·newton_rtol·r_ref keeps it converged.
+  const double safeguard = relative_residual > 0.0 ? 0.5 * newton_rtol / relative_residual
+                                                   : std::numeric_limits<double>::infinity();
+  return std::max(gmres_rtol, std::min(std::max(relative_residual, safeguard), gmres_forcing_max));
 }
 
 MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {

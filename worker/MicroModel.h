@@ -35,6 +35,9 @@ struct MicroSolverOptions {
   enum class Forcing { constant, residual };
   Forcing gmres_forcing = Forcing::residual;
   double gmres_forcing_max = 1e-4;  ///< if below gmres_rtol, Step 1 uses gmres_rtol
+  /// The unit's Newton tolerance (the run's newton.micro_rtol): the forcing never asks
+  /// Step 1 for a residual below half of it, 0.5·newton_rtol·r_ref.
+  double newton_rtol = 1e-8;
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
   /// The factor in single precision, used only as the GMRES preconditioner: the answer

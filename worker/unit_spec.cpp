@@ -19,7 +19,6 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bo
   // A lone unit is a model of one unit: the coordinators' collective rental is its own.
   if (plan.options.refresh == MicroSolverOptions::Refresh::collective)
     plan.options.refresh = MicroSolverOptions::Refresh::adaptive;
-  u.plan = std::make_shared<const MicroModelPlan>(std::move(plan));
   const bool one = root.has("Zbar"), path = root.has("Zbar_path");
   if (one == path)
     root.fail(one ? "Zbar_path" : "Zbar",
@@ -47,6 +46,8 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bo
   u.max_iterations = n.integer("max_iterations", 30, Range::closed(1, 1000), "iteration cap");
   n.finish();
   root.finish();
+  plan.options.newton_rtol = u.rtol;  // Step 1's forcing never solves below half of it
+  u.plan = std::make_shared<const MicroModelPlan>(std::move(plan));
   if (build) u.model = u.plan->build();
   return u;
 }

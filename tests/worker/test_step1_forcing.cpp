@@ -20,9 +20,18 @@ TEST(Step1Forcing, ToleranceFollowsTheResidualWithinItsBounds) {
   o.gmres_rtol = 1e-10;
   o.gmres_forcing_max = 1e-4;
   o.gmres_forcing = MicroSolverOptions::Forcing::residual;
+  o.newton_rtol = 1e-30;                   // the safeguard out of the way (below)
   EXPECT_EQ(o.step1_rtol(0.3), 1e-4);      // far from the answer: the loosest
   EXPECT_EQ(o.step1_rtol(2e-6), 2e-6);     // η = ‖r‖/r_ref
   EXPECT_EQ(o.step1_rtol(1e-13), 1e-10);   // never below gmres_rtol
+  // Kelley's safeguard: never a residual below 0.5·newton_rtol·r_ref, η ≥ 0.5·tol/(‖r‖/r_ref).
+  o.newton_rtol = 1e-8;
+  EXPECT_EQ(o.step1_rtol(2e-6), 1e-4);     // 0.5e-8/2e-6 = 2.5e-3, capped by the loosest
+  EXPECT_EQ(o.step1_rtol(5e-10), 1e-4);    // converged: the loosest, not gmres_rtol
+  EXPECT_EQ(o.step1_rtol(0.0), 1e-4);
+  o.newton_rtol = 1e-12;
+  EXPECT_DOUBLE_EQ(o.step1_rtol(1e-5), 1e-5);  // ‖r‖/r_ref above the safeguard's 5e-8
+  EXPECT_DOUBLE_EQ(o.step1_rtol(1e-7), 5e-6);  // the safeguard, 0.5·1e-12/1e-7, between the bounds
   o.gmres_forcing = MicroSolverOptions::Forcing::constant;
   EXPECT_EQ(o.step1_rtol(0.3), 1e-10);
   // Bounds inverted (options built in code): the tighter gmres_rtol wins, never NaN.
@@ -44,8 +53,9 @@ struct NewtonSolve {
 // A unit factored at one load (step 0), then a Newton solve at three times that load
 // on the kept factor (step 1): every Step 1 solve is preconditioned by a stale factor,
 // where the tolerance decides how many GMRES iterations it takes.
-NewtonSolve solve_on_a_stale_factor(MicroSolverOptions::Forcing forcing) {
+NewtonSolve solve_on_a_stale_factor(MicroSolverOptions::Forcing forcing, double newton_rtol) {
   MicroSolverOptions opt;
+  opt.newton_rtol = newton_rtol;
   opt.refresh = MicroSolverOptions::Refresh::fixed;
   opt.N_t = 100;
   opt.gmres_rtol = 1e-12;
@@ -78,8 +88,10 @@ NewtonSolve solve_on_a_stale_factor(MicroSolverOptions::Forcing forcing) {
 }
 
 TEST(Step1Forcing, SavesGmresIterationsOnAKeptFactorWithoutCostingNewton) {
-  const NewtonSolve tight = solve_on_a_stale_factor(MicroSolverOptions::Forcing::constant);
-  const NewtonSolve forced = solve_on_a_stale_factor(MicroSolverOptions::Forcing::residual);
+  // Kelley's safeguard off (newton_rtol far below the 1e-10 the solve stops at): η
+  // follows ‖r‖/r_ref all the way down.
+  const NewtonSolve tight = solve_on_a_stale_factor(MicroSolverOptions::Forcing::constant, 1e-30);
+  const NewtonSolve forced = solve_on_a_stale_factor(MicroSolverOptions::Forcing::residual, 1e-30);
   for (const NewtonSolve* s : {&tight, &forced})
     fmt::print("{}: {} Newton, GMRES {} (total {}), ‖r‖/r_ref {}\n",
                s == &tight ? "constant" : "residual", s->iterations,
@@ -98,6 +110,26 @@ TEST(Step1Forcing, SavesGmresIterationsOnAKeptFactorWithoutCostingNewton) {
   EXPECT_LE(forced.iterations, tight.iterations + 1);
   // Both stop at ‖r‖/r_ref ≤ 1e-10: the same answer to about that.
   EXPECT_LT(rel_diff(forced.P_bar, tight.P_bar), 1e-9);
+}
+
+TEST(Step1Forcing, TheConvergedIterationIsSolvedOnlyToTheNewtonTolerance) {
+  // The unit's Newton tolerance is the 1e-10 the solve stops at: the converged (last)
+  // iteration's Step 1 then needs a residual of 0.5e-10·r_ref only, η at its loosest.
+  const NewtonSolve tight = solve_on_a_stale_factor(MicroSolverOptions::Forcing::constant, 1e-10);
+  const NewtonSolve plain = solve_on_a_stale_factor(MicroSolverOptions::Forcing::residual, 1e-30);
+  const NewtonSolve guarded = solve_on_a_stale_factor(MicroSolverOptions::Forcing::residual, 1e-10);
+  fmt::print("safeguarded: {} Newton, GMRES {}, ‖r‖/r_ref {}\n", guarded.iterations,
+             fmt::join(guarded.gmres_per_iteration, " "), fmt::join(guarded.relative, " "));
+  ASSERT_TRUE(guarded.converged);
+  ASSERT_TRUE(plain.converged);
+  // The last Step 1 is as loose as the first (a safeguard left out, or fed the wrong
+  // tolerance, solves it to gmres_rtol like the plain forcing).
+  EXPECT_LT(guarded.gmres_per_iteration.back(), plain.gmres_per_iteration.back());
+  EXPECT_LE(guarded.gmres_per_iteration.back(), guarded.gmres_per_iteration.front());
+  EXPECT_LT(guarded.gmres, plain.gmres);
+  // No Newton iteration more than the plain forcing, the same answer.
+  EXPECT_LE(guarded.iterations, plain.iterations);
+  EXPECT_LT(rel_diff(guarded.P_bar, tight.P_bar), 1e-9);
 }
 
 MicroSolverOptions options_from(const nlohmann::json& solver) {
