@@ -7,6 +7,8 @@
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
+#include <memory>
+
 namespace fe2 {
 namespace {
 
@@ -33,19 +35,28 @@ Problem spd_problem(int n) {
 
 double true_residual(const Problem& p, const Vec& x) { return (p.b - p.A * x).norm(); }
 
-TEST(Gmres, OneIterationFromZeroAppliesTheOperatorOnce) {
-  Problem p = spd_problem(40);
-  const Eigen::LLT<Eigen::MatrixXd> exact(p.A);
-  const LinearOp M = [&](const Vec& x, Vec& y) { y = exact.solve(x); };
-  Vec x = Vec::Zero(40);
+/// Solves p from x to 1e-10·‖b‖ with preconditioner M; checks it converged to a true
+/// residual under the tolerance and reported that residual (recomputed, to round-off).
+GmresResult solve_and_check(Problem& p, const LinearOp& M, Vec& x) {
   const double tol = 1e-10 * p.b.norm();
-  const GmresResult res = gmres(p.op(), M, p.b, x, tol, 30, 100);
+  const GmresResult res = gmres(p.op(), M, p.b, x, tol, 30, 200);
   EXPECT_TRUE(res.converged);
-  EXPECT_EQ(res.iterations, 1);
-  EXPECT_EQ(p.applications, 1);  // no second product for the true residual
-  // The residual it reports is the true one: recomputed, the same to round-off.
   EXPECT_LE(true_residual(p, x), tol);
   EXPECT_NEAR(res.residual, true_residual(p, x), 1e-13 * p.b.norm());
+  return res;
+}
+
+LinearOp exact_inverse(const Problem& p) {
+  auto llt = std::make_shared<const Eigen::LLT<Eigen::MatrixXd>>(p.A);
+  return [llt](const Vec& x, Vec& y) { y = llt->solve(x); };
+}
+
+TEST(Gmres, OneIterationFromZeroAppliesTheOperatorOnce) {
+  Problem p = spd_problem(40);
+  Vec x = Vec::Zero(40);
+  const GmresResult res = solve_and_check(p, exact_inverse(p), x);
+  EXPECT_EQ(res.iterations, 1);
+  EXPECT_EQ(p.applications, 1);  // no second product for the true residual
 }
 
 TEST(Gmres, AnInexactPreconditionerStillChecksTheTrueResidual) {
@@ -53,29 +64,20 @@ TEST(Gmres, AnInexactPreconditionerStillChecksTheTrueResidual) {
   const Vec d = p.A.diagonal();
   const LinearOp jacobi = [&](const Vec& x, Vec& y) { y = x.cwiseQuotient(d); };
   Vec x = Vec::Zero(40);
-  const double tol = 1e-10 * p.b.norm();
-  const GmresResult res = gmres(p.op(), jacobi, p.b, x, tol, 30, 200);
-  ASSERT_TRUE(res.converged);
+  const GmresResult res = solve_and_check(p, jacobi, x);
   EXPECT_GT(res.iterations, 1);
   // One product per iteration and one per cycle for the true residual: a residual
   // recurrence in its place would save it, and could stop above tol.
   const int cycles = (res.iterations + 29) / 30;
   EXPECT_EQ(p.applications, res.iterations + cycles);
-  EXPECT_LE(true_residual(p, x), tol);
-  EXPECT_NEAR(res.residual, true_residual(p, x), 1e-13 * p.b.norm());
 }
 
 TEST(Gmres, ANonzeroStartAppliesTheOperatorForItsResiduals) {
   Problem p = spd_problem(40);
-  const Eigen::LLT<Eigen::MatrixXd> exact(p.A);
-  const LinearOp M = [&](const Vec& x, Vec& y) { y = exact.solve(x); };
   Vec x = Vec::Constant(40, 0.1);  // x ≠ 0: A x₀ for r₀, and A x for the true residual
-  const double tol = 1e-10 * p.b.norm();
-  const GmresResult res = gmres(p.op(), M, p.b, x, tol, 30, 100);
-  EXPECT_TRUE(res.converged);
+  const GmresResult res = solve_and_check(p, exact_inverse(p), x);
   EXPECT_EQ(res.iterations, 1);
   EXPECT_EQ(p.applications, 3);
-  EXPECT_LE(true_residual(p, x), tol);
 }
 
 }  // namespace
