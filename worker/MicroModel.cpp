@@ -14,10 +14,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
+#include <unordered_map>
 
 namespace fe2 {
+
 
 double MicroSolverOptions::step1_rtol(double relative_residual) const {
   if (gmres_forcing == Forcing::constant) return gmres_rtol;
@@ -239,17 +242,31 @@ MicroModel::MicroModel(HexMesh mesh, std::vector<MaterialPtr> materials,
       history_offset_[e + 1] = history_offset_[e] + 8 * static_cast<size_t>(material_of(e).history_size());
   }
 
-  geometry_.reserve(ne);
+  geometry_of_.resize(ne);
   eq_.resize(ne);
   std::vector<double> rho(mesh_.num_nodes(), 0.0);  // ⟨|∇N_a|⟩ on masters
+  std::unordered_multimap<uint64_t, int> geometry_by_hash;
   for (int e = 0; e < ne; ++e) {
-    geometry_.push_back(hex_geometry(mesh_, e));
+    const HexGeometry geo = hex_geometry(mesh_, e);
+    Fnv1a hash;
+    hash.add(&geo, sizeof(geo));
+    const auto [first, last] = geometry_by_hash.equal_range(hash.value());
+    const auto same = std::find_if(first, last, [&](const auto& entry) {
+      return std::memcmp(&geometry_[entry.second], &geo, sizeof(geo)) == 0;
+    });
+    if (same != last) {
+      geometry_of_[e] = same->second;
+    } else {
+      geometry_of_[e] = static_cast<int>(geometry_.size());
+      geometry_by_hash.emplace(hash.value(), geometry_of_[e]);
+      geometry_.push_back(geo);
+    }
     for (int i = 0; i < 3; ++i)
       for (int a = 0; a < 8; ++a) eq_[e][8 * i + a] = dofs_.dof(mesh_.hexes[e][a], i);
     for (int q = 0; q < 8; ++q)
       for (int a = 0; a < 8; ++a)
         rho[dofs_.master(mesh_.hexes[e][a])] +=
-            geometry_[e].weight[q] * geometry_[e].grad[q].col(a).norm() / mesh_.volume();
+            geo.weight[q] * geo.grad[q].col(a).norm() / mesh_.volume();
   }
   double s2 = 0.0;
   for (double v : rho) s2 += v * v;

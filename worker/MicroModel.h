@@ -96,7 +96,12 @@ class MicroModel {
   const PeriodicDofMap& dofs() const { return dofs_; }
   const MicroSolverOptions& options() const { return options_; }
   const Material& material_of(int e) const { return *materials_[mesh_.region[e]]; }
-  const HexGeometry& geometry(int e) const { return geometry_[e]; }
+  /// Elements of equal shape share one geometry (bit for bit: a voxel cell has a few
+  /// hundred distinct ones among thousands of elements), so an assembly reads it from
+  /// cache instead of streaming 1.6 KB per element.
+  const HexGeometry& geometry(int e) const { return geometry_[geometry_of_[e]]; }
+  /// How many distinct element geometries the mesh has.
+  int num_distinct_geometries() const { return static_cast<int>(geometry_.size()); }
   int num_dofs() const { return dofs_.num_dofs(); }
   int num_elements() const { return mesh_.num_hexes(); }
   double inv_volume() const { return 1.0 / mesh_.volume(); }
@@ -144,7 +149,8 @@ class MicroModel {
   std::vector<MaterialPtr> materials_;
   MicroSolverOptions options_;
   PeriodicDofMap dofs_;
-  std::vector<HexGeometry> geometry_;
+  std::vector<HexGeometry> geometry_;  ///< distinct geometries
+  std::vector<int> geometry_of_;       ///< element → its geometry in geometry_
   std::vector<std::array<int, 24>> eq_;
   std::vector<ElementScatter> scatter_;
   SparseMatrix pattern_;

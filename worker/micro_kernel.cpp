@@ -11,7 +11,14 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
                            const Eigen::Matrix<double, 3, 8>& w_e, const Vec9& Zbar,
                            const Material& material, bool need_G, HexContribution& out,
                            const HexPointContext* point) {
-  out.K.setZero();
+  // Two phases. Per Gauss point q: the law, and Mt_q = ω𝔸B̃ (what K, H and the rest
+  // are built from). Then K, one 8x8 block (i, k) at a time, summed over all 8 points
+  // in registers: K(8i+a, 8k+b) = Σ_q Σ_J ∂N_a/∂X_J Mt_q[k][3i+J][b]. Each column
+  // segment of K is stored once, not read and written at every point, and every update
+  // is an 8-vector (over the node index) times a broadcast scalar.
+  using Vec8 = Eigen::Matrix<double, 8, 1>;
+  alignas(64) double gT[8][3][8];       // gT[q][J][a] = ∂N_a/∂X_J at point q
+  alignas(64) double Mt[8][3][9][8];    // Mt[q][k][3i+J][b] = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
   out.r.setZero();
   if (need_G) out.G.setZero();
   out.Abar.setZero();
@@ -20,25 +27,18 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
   Vec9 Pi;                              // Π at the Gauss point
   Mat9 A;                               // 𝔸 at the Gauss point (toward w)
   Mat9 A_rate, A_Zbar;                  // ∂Π/∂Ż and 𝔸 toward Z̄ (rate-dependent laws)
-  // Every update below is an 8-vector (over the node index a or b) times at most 3
-  // coefficients: fixed-size, vectorized, no packing. Eigen's products of the 24-wide
-  // shapes went through its general GEMM (packing per call): 40 % of an assembly.
-  using Vec8 = Eigen::Matrix<double, 8, 1>;
-  Eigen::Matrix<double, 8, 3> gt;       // gt(a, J) = ∂N_a/∂X_J at the Gauss point
-  alignas(64) double Mt[3][9][8];       // Mt[k][3i+J][b] = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L  (ω𝔸B̃)
-  double* K = out.K.data();             // K(8i+a, 8k+b) at (8k+b)·24 + 8i + a
-  alignas(64) double Hsum[3][9][8] = {};  // Hsum[k][3i+J][b] = H(iJ, 8k+b)
   for (int q = 0; q < 8; ++q) {
     const Eigen::Matrix<double, 3, 8>& g = geo.grad[q];  // g(J,a) = ∂N_a/∂X_J
     const double omega = geo.weight[q] * inv_volume;
-    gt = g.transpose();
+    for (int J = 0; J < 3; ++J)
+      for (int a = 0; a < 8; ++a) gT[q][J][a] = g(J, a);
 
     // Z = Z̄ + B̃w: Z_iJ = Z̄_iJ + Σ_a w_ai ∂N_a/∂X_J
     Vec9 Zq;
     for (int i = 0; i < 3; ++i)
       for (int J = 0; J < 3; ++J) {
         double z = Zbar[index9(i, J)];
-        for (int a = 0; a < 8; ++a) z += w_e(i, a) * gt(a, J);
+        for (int a = 0; a < 8; ++a) z += w_e(i, a) * gT[q][J][a];
         Zq[index9(i, J)] = z;
       }
     // 𝔸 toward w (K, H) and toward Z̄ (G, Ā): equal unless Π depends on Ż, whose
@@ -63,59 +63,69 @@ void hex_contribution_impl(const HexGeometry& geo, double inv_volume,
       material.stress_and_tangent(Zq, Pi, A);
     }
 
-    // Mt[k][3i+J][b] = ω Σ_L 𝔸_iJkL ∂N_b/∂X_L
+    // ω∂N/∂X_J as three 8-vectors: every product below is one of them times a scalar
+    const Vec8 wg0 = omega * Eigen::Map<const Vec8>(gT[q][0]);
+    const Vec8 wg1 = omega * Eigen::Map<const Vec8>(gT[q][1]);
+    const Vec8 wg2 = omega * Eigen::Map<const Vec8>(gT[q][2]);
+    // Mt[q][k][3i+J][b] = Σ_L ω𝔸(iJ, kL) ∂N_b/∂X_L
+    const double* Ad = A.data();  // 𝔸(m, n) at 9n + m
     for (int k = 0; k < 3; ++k)
       for (int i = 0; i < 3; ++i)
         for (int J = 0; J < 3; ++J) {
-          const Eigen::Vector3d c(omega * A(index9(i, J), index9(k, 0)),
-                                  omega * A(index9(i, J), index9(k, 1)),
-                                  omega * A(index9(i, J), index9(k, 2)));
-          Eigen::Map<Vec8>(Mt[k][3 * i + J]).noalias() = gt.lazyProduct(c);
+          const int m = index9(i, J);
+          Eigen::Map<Vec8>(Mt[q][k][3 * i + J]).noalias() = wg0 * Ad[9 * index9(k, 0) + m] +
+                                                            wg1 * Ad[9 * index9(k, 1) + m] +
+                                                            wg2 * Ad[9 * index9(k, 2) + m];
         }
-    // K(8i+a, 8k+b) += Σ_J ∂N_a/∂X_J Mt[k][3i+J][b]. With major symmetry K is
-    // symmetric: only the blocks k >= i are computed here, the rest mirrored below.
-    for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < (need_G ? 3 : k + 1); ++i)
-        for (int b = 0; b < 8; ++b) {
-          const Eigen::Vector3d m(Mt[k][3 * i][b], Mt[k][3 * i + 1][b], Mt[k][3 * i + 2][b]);
-          Eigen::Map<Vec8>(K + (8 * k + b) * 24 + 8 * i).noalias() += gt.lazyProduct(m);
-        }
-    // H(iJ, 8k+b) = Σ_q Mt[k][3i+J][b], summed in Mt's layout and transposed once below
-    for (int k = 0; k < 3; ++k)
-      for (int iJ = 0; iJ < 9; ++iJ)
-        Eigen::Map<Vec8>(Hsum[k][iJ]) += Eigen::Map<const Vec8>(Mt[k][iJ]);
     if (need_G) {
       // G(8i+a, m) += ω Σ_J ∂N_a/∂X_J 𝔸(iJ, m)
       double* G = out.G.data();  // G(8i+a, m) at 24m + 8i + a
+      const double* Az = A_toward_Zbar->data();
       for (int m = 0; m < 9; ++m)
-        for (int i = 0; i < 3; ++i) {
-          const Eigen::Vector3d c(omega * (*A_toward_Zbar)(index9(i, 0), m),
-                                  omega * (*A_toward_Zbar)(index9(i, 1), m),
-                                  omega * (*A_toward_Zbar)(index9(i, 2), m));
-          Eigen::Map<Vec8>(G + 24 * m + 8 * i).noalias() += gt.lazyProduct(c);
-        }
+        for (int i = 0; i < 3; ++i)
+          Eigen::Map<Vec8>(G + 24 * m + 8 * i) += wg0 * Az[9 * m + index9(i, 0)] +
+                                                  wg1 * Az[9 * m + index9(i, 1)] +
+                                                  wg2 * Az[9 * m + index9(i, 2)];
     }
     // r(8i+a) += ω Σ_J ∂N_a/∂X_J Π_iJ
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d p(omega * Pi[index9(i, 0)], omega * Pi[index9(i, 1)],
-                              omega * Pi[index9(i, 2)]);
-      out.r.segment<8>(8 * i).noalias() += gt.lazyProduct(p);
-    }
+    for (int i = 0; i < 3; ++i)
+      out.r.segment<8>(8 * i) += wg0 * Pi[index9(i, 0)] + wg1 * Pi[index9(i, 1)] +
+                                 wg2 * Pi[index9(i, 2)];
     // ⟨𝔸⟩ += ω𝔸 as a flat loop: Eigen treats the 81-double Mat9 as unaligned and ran
-    // it two doubles at a time with a peeling prologue (10 % of the kernel).
+    // it two doubles at a time with a peeling prologue.
     const double* Aq = A_toward_Zbar->data();
     double* Abar = out.Abar.data();
     for (int t = 0; t < 81; ++t) Abar[t] += omega * Aq[t];
     out.Pbar += omega * Pi;
   }
+
+  // K(8i+a, 8k+b) = Σ_q Σ_J ∂N_a/∂X_J Mt[q][k][3i+J][b], eight accumulators (b) per
+  // block. With major symmetry K is symmetric: only the blocks k >= i, mirrored below.
+  double* K = out.K.data();  // K(8i+a, 8k+b) at (8k+b)·24 + 8i + a
   for (int k = 0; k < 3; ++k)
-    for (int b = 0; b < 8; ++b)
-      for (int i = 0; i < 3; ++i)
-        for (int J = 0; J < 3; ++J) out.H(index9(i, J), 8 * k + b) = Hsum[k][3 * i + J][b];
+    for (int i = 0; i < (need_G ? 3 : k + 1); ++i) {
+      Vec8 acc[8];
+      for (int b = 0; b < 8; ++b) acc[b].setZero();
+      for (int q = 0; q < 8; ++q)
+        for (int J = 0; J < 3; ++J) {
+          const Vec8 gJ = Eigen::Map<const Vec8>(gT[q][J]);
+          const double* m = Mt[q][k][3 * i + J];
+          for (int b = 0; b < 8; ++b) acc[b] += gJ * m[b];
+        }
+      for (int b = 0; b < 8; ++b) Eigen::Map<Vec8>(K + (8 * k + b) * 24 + 8 * i) = acc[b];
+    }
   if (!need_G)
     for (int i = 0; i < 3; ++i)
       for (int k = i + 1; k < 3; ++k)
         out.K.block<8, 8>(8 * k, 8 * i) = out.K.block<8, 8>(8 * i, 8 * k).transpose();
+  // H(iJ, 8k+b) = Σ_q Mt[q][k][3i+J][b]
+  for (int k = 0; k < 3; ++k)
+    for (int iJ = 0; iJ < 9; ++iJ) {
+      Vec8 h = Eigen::Map<const Vec8>(Mt[0][k][iJ]);
+      for (int q = 1; q < 8; ++q) h += Eigen::Map<const Vec8>(Mt[q][k][iJ]);
+      const int i = iJ / 3, J = iJ % 3;
+      for (int b = 0; b < 8; ++b) out.H(index9(i, J), 8 * k + b) = h[b];
+    }
 }
 
 }  // namespace
