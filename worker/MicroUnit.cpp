@@ -119,6 +119,15 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
       }
       context = &point;
     }
+    // K's entries this element adds into are spread over 18 MB (at ≈ 26k DOF) and most
+    // are not in cache: asked for now, they arrive while the kernel runs.
+    const MicroModel::ElementScatter& sc = m.scatter(e);
+    for (int b = 0; b < 8; ++b)
+      for (int a = 0; a < 8; ++a) {
+        const int p = sc.block[8 * a + b];
+        if (p < 0) continue;
+        for (int k = 0; k < 3; ++k) __builtin_prefetch(Kv + p + k * sc.stride[b], 1);
+      }
     hex_contribution(m.geometry(e), inv_volume, w_e, Zbar, m.material_of(e), need_G, c, context);
     double* Hv = sys.H.data();
     for (int l = 0; l < 24; ++l) {
@@ -129,7 +138,6 @@ void MicroUnit::assemble_at(const Vec& w, const Vec9& Zbar, System& sys,
       if (need_G) Gt.col(gl) += c.G.row(l).transpose();
     }
     // K: node block (a, b) of the element matrix, 3×3, into its place (MicroModel::scatter)
-    const MicroModel::ElementScatter& sc = m.scatter(e);
     for (int b = 0; b < 8; ++b) {
       const int stride = sc.stride[b];
       for (int a = 0; a < 8; ++a) {

@@ -10,7 +10,7 @@ namespace fe2 {
 namespace {
 
 // Bytes per item, from the containers in MicroModel and MicroUnit (see the header).
-constexpr double kPerElementModel = 1600.0   // HexGeometry: 8 × (3×8 ∇N + weight) doubles
+constexpr double kPerElementModel = 1600.0   // HexGeometry (at most: equal shapes share one)
                                     + 288.0  // scatter: 72 ints
                                     + 96.0   // equations: 24 ints
                                     + 36.0   // hex nodes and region
