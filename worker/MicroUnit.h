@@ -99,7 +99,11 @@ class MicroUnit final : public PointModel {
   /// Step 1 (Fig. 6 c2): K δw₁ = −r to ‖K δw₁ + r‖ ≤ rtol ‖r‖.
   GmresResult step1(double rtol);
   /// ‖r‖ below which the residual is round-off of the assembly (JobOutput::r_floor).
-  double residual_floor() const;
+  double residual_floor();
+  /// y = K x for GMRES (its first product also keeps |K|𝟙 for residual_floor()).
+  LinearOp K_operator();
+  /// y = K̃⁻¹ x with the cached factor.
+  LinearOp preconditioner() const;
   /// The residual a solve with K can reach at x, for GMRES's stopping test.
   ResidualFloor solve_floor() const;
 
@@ -138,6 +142,8 @@ class MicroUnit final : public PointModel {
   double activation_time_ = 0.0;
   // --- workspace ---
   System sys_;
+  Vec abs_row_sums_;              ///< |K|𝟙 of sys_.K, valid while abs_row_sums_current_
+  bool abs_row_sums_current_ = false;
   std::unique_ptr<SparseFactor> factor_;
 };
 

@@ -15,4 +15,10 @@ Vec abs_times(const SparseMatrix& K, const Vec& v);
 /// result.
 Vec abs_row_sums(const SparseMatrix& K, bool symmetric);
 
+/// y = K x, and in the same pass over K's values `abs_sums` = abs_row_sums(K, symmetric)
+/// (bit for bit both): a unit's first Step 1 product gives its residual floor for
+/// the price of one more add per entry instead of a second 18 MB read (at ≈ 26k DOF).
+void times_and_abs_row_sums(const SparseMatrix& K, const Vec& x, Vec& y, Vec& abs_sums,
+                            bool symmetric);
+
 }  // namespace fe2

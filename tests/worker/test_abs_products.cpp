@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 namespace fe2 {
 namespace {
 
@@ -71,6 +74,42 @@ TEST(AbsProducts, ASymmetricUnitAssemblesASymmetricK) {
   EXPECT_LE((K - Kt).norm(), 1e-14 * K.norm());
   const Vec rows = abs_row_sums(K, false), columns = abs_row_sums(K, true);
   EXPECT_LE((rows - columns).norm(), 1e-14 * rows.norm());
+}
+
+TEST(AbsProducts, TheFusedProductGivesTheSameBitsAsTheSeparateOnes) {
+  for (const bool symmetric : {true, false}) {
+    const SparseMatrix K = random_sparse(50, symmetric);
+    const Vec x = Vec::LinSpaced(50, -1.0, 2.0);
+    Vec y, sums;
+    times_and_abs_row_sums(K, x, y, sums, symmetric);
+    const Vec y_eigen = K * x;
+    EXPECT_TRUE(y == y_eigen) << "symmetric " << symmetric;
+    EXPECT_TRUE(sums == abs_row_sums(K, symmetric)) << "symmetric " << symmetric;
+  }
+}
+
+TEST(AbsProducts, EachIterationsResidualFloorIsOfItsOwnK) {
+  // The floor's |K|𝟙 comes from Step 1's first product: after a new assembly it must be
+  // that of the new K, not the last one's. States far apart, so the floors differ.
+  MicroUnit unit(test::two_cell_model({}));
+  proto::JobInput in;
+  in.step = 0;
+  in.iteration = 1;
+  const auto expected_floor = [&] {
+    const MicroModel& m = unit.model();
+    const double h = std::cbrt(1.0 / (m.inv_volume() * m.num_elements()));
+    const double nodes_moved =
+        std::numeric_limits<double>::epsilon() * (1.0 + unit.Zbar().norm()) * h;
+    return nodes_moved * abs_row_sums(unit.system().K, m.symmetric()).norm();
+  };
+  in.Zbar = test::gradient({0.01, 0, 0, 0, 0, 0, 0, 0, 0});
+  const double first = unit.iterate(in).r_floor;
+  EXPECT_EQ(first, expected_floor());
+  in.Zbar = test::gradient({0.3, 0.05, 0, 0, -0.1, 0, 0, 0, -0.1});
+  in.iteration = 2;
+  const double second = unit.iterate(in).r_floor;
+  EXPECT_EQ(second, expected_floor());
+  EXPECT_GT(std::abs(second - first), 1e-3 * first);
 }
 
 }  // namespace
