@@ -233,6 +233,34 @@ void read_formulation(SpecNode f, RunSpec& spec) {
   f.finish();
 }
 
+/// /newton: the macro and micro tolerances, cutbacks and the macro solver. Read before
+/// /models, whose units take micro_rtol as their Newton tolerance.
+void read_newton(SpecNode n, RunSpec& spec) {
+  spec.newton_max_iterations = n.integer("max_iterations", 20, Range::closed(1, 1000),
+                                         "iterations per step before a cutback");
+  spec.newton_rtol = n.number("rtol", 1e-8, Range{0.0, 1.0, true, true},
+                              "macro residual / max(‖f_int‖, ‖f_ext‖)");
+  spec.micro_rtol = n.number("micro_rtol", 1e-8, Range{0.0, 1.0, true, true},
+                             "unit residual ‖r‖ / r_ref");
+  spec.max_cutbacks = n.integer("max_cutbacks", 4, Range::closed(0, 30),
+                                "step halvings before giving up");
+  {
+    SpecNode m = n.child("macro_solver", false, "when the macro factor is refreshed");
+    MacroSolverOptions& o = spec.macro_solver;
+    o.refresh = m.choice("refresh", "every_iteration", {"every_iteration", "adaptive"},
+                         "every_iteration: factor S̄ at every Newton iteration; adaptive: keep the "
+                         "factor as GMRES preconditioner across iterations and steps") == "adaptive"
+                    ? MacroSolverOptions::Refresh::adaptive
+                    : MacroSolverOptions::Refresh::every_iteration;
+    o.gmres_rtol = m.number("gmres_rtol", 1e-12, Range{0.0, 1e-3, true, true},
+                            "‖b − S̄x‖ / ‖b‖ GMRES reaches with a kept factor");
+    o.max_gmres_iterations = m.integer("max_gmres_iterations", 10, Range::closed(1, 500),
+                                       "a solve that needs more refactors for the next one");
+    m.finish();
+  }
+  n.finish();
+}
+
 void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
   const auto names = [&] {
     std::vector<std::string> n;
@@ -251,9 +279,9 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
                                       "FE² micro unit per point, or the macro law itself");
     if (kind == "fe2") {
       pm.kind = PointModelSpec::Kind::fe2;
-      // Built once /newton has given the unit's tolerance (read_run_spec).
-      pm.plan = std::make_shared<const MicroModelPlan>(
-          MicroModel::plan(m.child("unit", true, "the micro unit"), spec.base_dir));
+      MicroModelPlan plan = MicroModel::plan(m.child("unit", true, "the micro unit"), spec.base_dir);
+      plan.options.newton_rtol = spec.micro_rtol;  // Step 1 never solves below half of it
+      pm.plan = std::make_shared<const MicroModelPlan>(std::move(plan));
     } else {
       pm.kind = PointModelSpec::Kind::macro_law;
       SpecNode mat = m.child("material", true, "constitutive law");
@@ -367,6 +395,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   read_formulation(root.child("formulation", false, "macro discretization: displacement only, or "
                                                     "mixed displacement–pressure"),
                    spec);
+  read_newton(root.child("newton", false, "Newton–Raphson"), spec);
   read_models(root.child("models", true, "point models by name"),
               root.child("assign", false, "which model each element uses"), spec);
 
@@ -427,37 +456,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
     t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
   t.finish();
 
-  SpecNode n = root.child("newton", false, "Newton–Raphson");
-  spec.newton_max_iterations = n.integer("max_iterations", 20, Range::closed(1, 1000),
-                                         "iterations per step before a cutback");
-  spec.newton_rtol = n.number("rtol", 1e-8, Range{0.0, 1.0, true, true},
-                              "macro residual / max(‖f_int‖, ‖f_ext‖)");
-  spec.micro_rtol = n.number("micro_rtol", 1e-8, Range{0.0, 1.0, true, true},
-                             "unit residual ‖r‖ / r_ref");
-  for (auto& m : spec.models)  // Step 1's forcing never solves below half of it
-    if (m.plan) {
-      auto plan = std::make_shared<MicroModelPlan>(*m.plan);
-      plan->options.newton_rtol = spec.micro_rtol;
-      m.plan = std::move(plan);
-    }
-  if (build_units) build_unit_models(spec);
-  spec.max_cutbacks = n.integer("max_cutbacks", 4, Range::closed(0, 30),
-                                "step halvings before giving up");
-  {
-    SpecNode m = n.child("macro_solver", false, "when the macro factor is refreshed");
-    MacroSolverOptions& o = spec.macro_solver;
-    o.refresh = m.choice("refresh", "every_iteration", {"every_iteration", "adaptive"},
-                         "every_iteration: factor S̄ at every Newton iteration; adaptive: keep the "
-                         "factor as GMRES preconditioner across iterations and steps") == "adaptive"
-                    ? MacroSolverOptions::Refresh::adaptive
-                    : MacroSolverOptions::Refresh::every_iteration;
-    o.gmres_rtol = m.number("gmres_rtol", 1e-12, Range{0.0, 1e-3, true, true},
-                            "‖b − S̄x‖ / ‖b‖ GMRES reaches with a kept factor");
-    o.max_gmres_iterations = m.integer("max_gmres_iterations", 10, Range::closed(1, 500),
-                                       "a solve that needs more refactors for the next one");
-    m.finish();
-  }
-  n.finish();
+  if (build_units) build_unit_models(spec);  // after the cheap checks above
 
   SpecNode cavities = root.child("cavities", false, "cavities whose deformed volume is reported every step");
   for (auto it = cavities.raw().begin(); it != cavities.raw().end(); ++it) {

@@ -18,8 +18,9 @@ double NeoHookean::energy(const Vec9& Z) const {
 
 Vec9 NeoHookean::stress(const Vec9& Z) const {
   const Mat3 F = deformation_gradient(Z);
-  const double lnJ = std::log(checked_jacobian(F, kName));
-  const Mat3 F_invT = F.inverse().transpose();
+  const auto [cof, J] = checked_cofactor(F, kName);
+  const double lnJ = std::log(J);
+  const Mat3 F_invT = cof / J;
   const auto [lambda, mu] = lame_;
   return as_vec9(mu * (F - F_invT) + lambda * lnJ * F_invT);
 }
@@ -28,19 +29,7 @@ void NeoHookean::stress_and_tangent(const Vec9& Z, Vec9& Pi, Mat9& A) const {
   // Every Gauss point of a unit calls this (7 of a unit iteration's 30 ms of assembly):
   // F⁻ᵀ from the cofactors that also give J, and 𝔸 written once, entry by entry.
   const Mat3 F = deformation_gradient(Z);
-  Mat3 cof;  // cof(F) = J F⁻ᵀ
-  cof(0, 0) = F(1, 1) * F(2, 2) - F(1, 2) * F(2, 1);
-  cof(0, 1) = F(1, 2) * F(2, 0) - F(1, 0) * F(2, 2);
-  cof(0, 2) = F(1, 0) * F(2, 1) - F(1, 1) * F(2, 0);
-  cof(1, 0) = F(0, 2) * F(2, 1) - F(0, 1) * F(2, 2);
-  cof(1, 1) = F(0, 0) * F(2, 2) - F(0, 2) * F(2, 0);
-  cof(1, 2) = F(0, 1) * F(2, 0) - F(0, 0) * F(2, 1);
-  cof(2, 0) = F(0, 1) * F(1, 2) - F(0, 2) * F(1, 1);
-  cof(2, 1) = F(0, 2) * F(1, 0) - F(0, 0) * F(1, 2);
-  cof(2, 2) = F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0);
-  const double J = F(0, 0) * cof(0, 0) + F(0, 1) * cof(0, 1) + F(0, 2) * cof(0, 2);
-  if (!(J > 0.0))
-    throw NumericalError(fmt::format("{}: inverted material point: det F = {}", kName, J));
+  const auto [cof, J] = checked_cofactor(F, kName);
   const double lnJ = std::log(J);
   const Mat3 H = cof / J;  // H = F⁻ᵀ, so F⁻¹_Li = H_iL and F⁻¹_Jk = H_kJ
   const auto [lambda, mu] = lame_;
