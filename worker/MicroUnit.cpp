@@ -190,6 +190,7 @@ void MicroUnit::rebuild_factor() {
   std::copy(K_factored_.begin(), K_factored_.end(), K.valuePtr());
   factor_ = model_->make_factor(factor_kind_);
   factor_->factorize(K);
+  factor_->compact();  // as the refresh left it
 }
 
 void MicroUnit::refresh() {
@@ -267,6 +268,7 @@ void MicroUnit::refresh() {
     chi_.col(c) = x;
     last_chi_solve_.gmres_iterations += res.iterations;
   }
+  factor_->compact();  // χ is solved: a binary16-kept factor is rounded only now
   policy_.refreshed(factor_->factor_flops(), factor_->solve_flops());
   ++refresh_count_;
 }

@@ -25,6 +25,10 @@ class SparseFactor {
   /// X = K⁻¹ B for `nrhs` column-major right-hand sides of length n (B, X may alias).
   virtual void solve(const double* B, double* X, int nrhs) = 0;
   virtual std::string name() const = 0;
+  /// Ends a refresh: what is kept between jobs in lower precision than it was factored
+  /// in (a float factor kept in binary16) is rounded here, after the refresh's own
+  /// solves (χ) had the factor at full accuracy. Solves work before and after.
+  virtual void compact() {}
   /// Bytes held by the numeric factor (for traces and the memory budget).
   virtual double factor_bytes() const = 0;
   /// Floating-point operations of one factorization and of one solve, as the library

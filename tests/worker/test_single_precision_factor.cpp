@@ -101,6 +101,41 @@ TEST(SinglePrecisionFactor, HalfStorageGivesTheSameAnswer) {
   expect_same_answer(half, dbl);
 }
 
+TEST(SinglePrecisionFactor, HalfStorageSolvesChiWithTheFloatFactorThenRoundsIt) {
+  // A refresh solves χ before the factor is rounded to binary16: the same χ, bit for
+  // bit, as with the float factor kept as it is, and the same refinement work; the
+  // factor the unit keeps afterwards is the binary16 one (half the bytes).
+  MicroSolverOptions o;
+  o.single_precision = true;
+  o.refresh = MicroSolverOptions::Refresh::fixed;
+  o.N_t = 100;
+  MicroUnit sgl(test::two_cell_model(o));
+  o.half_storage = true;
+  MicroUnit half(test::two_cell_model(o));
+  proto::JobInput in;
+  in.step = 0;
+  in.iteration = 1;
+  in.Zbar = gradient({0.04, 0.01, 0.0, 0.0, -0.015, 0.0, 0.01, 0.0, 0.005});
+  sgl.iterate(in);
+  half.iterate(in);
+  EXPECT_TRUE(half.chi() == sgl.chi());
+  EXPECT_EQ(half.last_chi_solve().refinement_rounds, sgl.last_chi_solve().refinement_rounds);
+  EXPECT_EQ(half.last_chi_solve().gmres_iterations, sgl.last_chi_solve().gmres_iterations);
+  EXPECT_NEAR(half.factor_bytes() / sgl.factor_bytes(), 0.5, 0.15);
+  // The next refresh as well (the float values are rebuilt, used, and rounded again),
+  // at a new Z̄ and without applying δw₁ (which the two factors solved differently), so
+  // both units factor the same K.
+  in.force_refresh = 1;
+  in.apply_update = 0;
+  in.Zbar *= 1.5;
+  in.iteration = 2;
+  sgl.iterate(in);
+  half.iterate(in);
+  EXPECT_EQ(half.refresh_count(), 2);
+  EXPECT_TRUE(half.chi() == sgl.chi());
+  EXPECT_NEAR(half.factor_bytes() / sgl.factor_bytes(), 0.5, 0.15);
+}
+
 TEST(SinglePrecisionFactor, SupernodalFloatLltGivesTheSameAnswer) {
   const UnitRun dbl = run({});
   MicroSolverOptions o;
