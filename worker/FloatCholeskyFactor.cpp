@@ -1,6 +1,7 @@
 #include "worker/FloatCholeskyFactor.h"
 
 #include "common/error.h"
+#include "worker/binary16_columns.h"
 #include "worker/cholmod_factor_io.h"
 #include "worker/large_pages.h"
 
@@ -9,12 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#ifdef __F16C__
-#include <immintrin.h>
-#endif
-#include <vector>
 #include <cstdint>
+#include <vector>
 
 // Single-precision BLAS/LAPACK (the Fortran interface every Debian BLAS provides).
 extern "C" {
@@ -40,7 +37,6 @@ namespace {
 
 constexpr float kOne = 1.0f, kZero = 0.0f, kMinusOne = -1.0f;
 constexpr int kInc = 1;
-constexpr int kPanel = 64;  ///< columns converted from binary16 at a time: ≤ 64 × max_rows_ floats
 
 /// Factor values on large pages when they are big (the factor is streamed by every solve).
 template <class T>
@@ -70,34 +66,6 @@ using FloatArray = FactorArray<float>;
 // |L_ij| ≤ 1 (each row of L has unit norm), so nothing overflows; entries below 6e-5
 // lose relative precision and those below 6e-8 vanish, which a preconditioner can afford.
 using HalfArray = FactorArray<uint16_t>;
-
-// binary16 ↔ float, 8 at a time with F16C where the build targets it (FE2_NATIVE on any
-// x86 since 2012); the scalar conversion of _Float16 otherwise.
-void floats_to_half(const float* from, uint16_t* to, size_t count) {
-  size_t i = 0;
-#ifdef __F16C__
-  for (; i + 8 <= count; i += 8)
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(to + i),
-                     _mm256_cvtps_ph(_mm256_loadu_ps(from + i), _MM_FROUND_TO_NEAREST_INT));
-#endif
-  for (; i < count; ++i) {
-    const _Float16 h = static_cast<_Float16>(from[i]);
-    std::memcpy(to + i, &h, sizeof h);
-  }
-}
-
-void half_to_floats(const uint16_t* from, float* to, size_t count) {
-  size_t i = 0;
-#ifdef __F16C__
-  for (; i + 8 <= count; i += 8)
-    _mm256_storeu_ps(to + i, _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(from + i))));
-#endif
-  for (; i < count; ++i) {
-    _Float16 h;
-    std::memcpy(&h, from + i, sizeof h);
-    to[i] = static_cast<float>(h);
-  }
-}
 
 class FloatCholeskyFactor final : public SparseFactor {
  public:
@@ -161,13 +129,14 @@ class FloatCholeskyFactor final : public SparseFactor {
   void numeric();
   /// Rounds the float factor to binary16 and frees the float values.
   void keep_in_half();
-  /// The forward (L y = b) and backward (Lᵀ x = y) steps of supernode s from the
-  /// binary16 values, a panel of columns at a time converted into a float buffer that
-  /// stays in cache (converting whole supernodes measured 2.3× slower solves).
-  void forward_half(int s, float* Y, float* E, int nrhs);
-  void backward_half(int s, float* Y, float* E, int nrhs);
-  /// Columns [c0, c0 + w) of supernode s (all its rows) as floats in panel_.
-  const float* panel(int s, int c0, int w);
+  /// The forward (L y = b) and backward (Lᵀ x = y) steps of supernode s on one
+  /// right-hand side y, reading the binary16 values directly (binary16_columns.h);
+  /// w holds the supernode's rows of y while it is worked on.
+  void forward_half(int s, float* y, float* w) const;
+  void backward_half(int s, float* y, float* w) const;
+  /// L Lᵀ Y = Y in place (nrhs columns of n_), from Lx_ or from Lh_.
+  void substitute_float(float* Y, int nrhs);
+  void substitute_half(float* Y, int nrhs);
 
   int nsuper() const { return static_cast<int>(L_->nsuper); }
   const int* super() const { return static_cast<const int*>(L_->super); }
@@ -188,7 +157,6 @@ class FloatCholeskyFactor final : public SparseFactor {
   bool half_storage_ = false;
   FloatArray Lx_;                 ///< the numeric factor, supernode by supernode
   HalfArray Lh_;                  ///< the same kept in binary16 (half_storage_; Lx_ released)
-  std::vector<float> panel_;      ///< kPanel columns of a supernode converted from binary16
   // Workspace of the numeric factorization and the solves.
   std::vector<int> head_, next_, lpos_, map_, relative_map_;
   std::vector<float> update_, y_, e_;
@@ -368,103 +336,67 @@ void FloatCholeskyFactor::keep_in_half() {
   Lh_.allocate(Lx_.size);
   floats_to_half(Lx_.data, Lh_.data, Lx_.size);
   Lx_.release();
-  panel_.resize(static_cast<size_t>(max_rows_) * kPanel);
 }
 
-const float* FloatCholeskyFactor::panel(int s, int c0, int w) {
-  const int nsrow = pi()[s + 1] - pi()[s];
-  half_to_floats(Lh_.data + px()[s] + static_cast<size_t>(c0) * nsrow, panel_.data(),
-                 static_cast<size_t>(w) * nsrow);
-  return panel_.data();
+// Forward: w = (y of the supernode's columns, 0 for its rows below). Blocks of
+// kMaxHalfColumns columns: the block's triangle L_bb x_b = w_b, then every row under the
+// block takes w −= L_·b x_b in one pass over the block's columns; the rows below the
+// supernode then receive what they gathered.
+void FloatCholeskyFactor::forward_half(int s, float* y, float* w) const {
+  const int k1 = super()[s], nscol = super()[s + 1] - k1;
+  const int psi = pi()[s], nsrow = pi()[s + 1] - psi;
+  const int* below = rows() + psi + nscol;
+  const uint16_t* Ls = Lh_.data + px()[s];
+  std::copy(y + k1, y + k1 + nscol, w);
+  std::fill(w + nscol, w + nsrow, 0.0f);
+  for (int j0 = 0; j0 < nscol; j0 += kMaxHalfColumns) {
+    const int b = std::min(kMaxHalfColumns, nscol - j0);
+    const uint16_t* Lb = Ls + static_cast<size_t>(j0) * nsrow + j0;  // L(j0, j0)
+    for (int c = 0; c < b; ++c) {
+      w[j0 + c] /= half_to_float(Lb[c * nsrow + c]);
+      for (int r = c + 1; r < b; ++r) w[j0 + r] -= half_to_float(Lb[c * nsrow + r]) * w[j0 + c];
+    }
+    subtract_half_columns(b, nsrow - j0 - b, Lb + b, nsrow, w + j0, w + j0 + b);
+  }
+  std::copy(w, w + nscol, y + k1);
+  for (int i = 0; i < nsrow - nscol; ++i) y[below[i]] += w[nscol + i];
 }
 
-// Forward, panel by panel: x_p = L_pp⁻¹ y_p, then the rows below the panel in the
-// diagonal block take −L_·p x_p and the off-diagonal rows gather E += L₂₁,p x_p.
-void FloatCholeskyFactor::forward_half(int s, float* Y, float* E, int nrhs) {
-  const int n = n_, k1 = super()[s], nscol = super()[s + 1] - k1;
-  const int psi = pi()[s], nsrow = pi()[s + 1] - psi, m = nsrow - nscol;
-  const int* Ls = rows();
-  std::fill(E, E + static_cast<size_t>(m) * nrhs, 0.0f);
-  for (int c0 = 0; c0 < nscol; c0 += kPanel) {
-    const int w = std::min(kPanel, nscol - c0), below = nscol - c0 - w;
-    const float* P = panel(s, c0, w);
-    float* y = Y + k1 + c0;
-    if (nrhs == 1) {
-      strsv_("L", "N", "N", &w, P + c0, &nsrow, y, &kInc);
-      if (below > 0) sgemv_("N", &below, &w, &kMinusOne, P + c0 + w, &nsrow, y, &kInc, &kOne, y + w, &kInc);
-      if (m > 0) sgemv_("N", &m, &w, &kOne, P + nscol, &nsrow, y, &kInc, &kOne, E, &kInc);
-    } else {
-      strsm_("L", "L", "N", "N", &w, &nrhs, &kOne, P + c0, &nsrow, y, &n);
-      if (below > 0)
-        sgemm_("N", "N", &below, &nrhs, &w, &kMinusOne, P + c0 + w, &nsrow, y, &n, &kOne, y + w, &n);
-      if (m > 0) sgemm_("N", "N", &m, &nrhs, &w, &kOne, P + nscol, &nsrow, y, &n, &kOne, E, &m);
+// Backward, last block first: x_b = L_bbᵀ⁻¹ (w_b − L_·bᵀ w_below), the dot products with
+// every row under the block taken in one pass over its columns.
+void FloatCholeskyFactor::backward_half(int s, float* y, float* w) const {
+  const int k1 = super()[s], nscol = super()[s + 1] - k1;
+  const int psi = pi()[s], nsrow = pi()[s + 1] - psi;
+  const int* below = rows() + psi + nscol;
+  const uint16_t* Ls = Lh_.data + px()[s];
+  std::copy(y + k1, y + k1 + nscol, w);
+  for (int i = 0; i < nsrow - nscol; ++i) w[nscol + i] = y[below[i]];
+  for (int j0 = (nscol - 1) / kMaxHalfColumns * kMaxHalfColumns; j0 >= 0; j0 -= kMaxHalfColumns) {
+    const int b = std::min(kMaxHalfColumns, nscol - j0);
+    const uint16_t* Lb = Ls + static_cast<size_t>(j0) * nsrow + j0;
+    float d[kMaxHalfColumns];
+    dot_half_columns(b, nsrow - j0 - b, Lb + b, nsrow, w + j0 + b, d);
+    for (int c = b - 1; c >= 0; --c) {
+      float t = w[j0 + c] - d[c];
+      for (int r = c + 1; r < b; ++r) t -= half_to_float(Lb[c * nsrow + r]) * w[j0 + r];
+      w[j0 + c] = t / half_to_float(Lb[c * nsrow + c]);
     }
   }
-  for (int c = 0; c < nrhs; ++c)
-    for (int i = 0; i < m; ++i)
-      Y[Ls[psi + nscol + i] + static_cast<size_t>(c) * n] -= E[i + static_cast<size_t>(c) * m];
+  std::copy(w, w + nscol, y + k1);
 }
 
-// Backward, last panel first: x_p = L_ppᵀ⁻¹ (y_p − L₂₁,pᵀ x₂ − L_·pᵀ x_below).
-void FloatCholeskyFactor::backward_half(int s, float* Y, float* E, int nrhs) {
-  const int n = n_, k1 = super()[s], nscol = super()[s + 1] - k1;
-  const int psi = pi()[s], nsrow = pi()[s + 1] - psi, m = nsrow - nscol;
-  const int* Ls = rows();
-  for (int c = 0; c < nrhs; ++c)
-    for (int i = 0; i < m; ++i)
-      E[i + static_cast<size_t>(c) * m] = Y[Ls[psi + nscol + i] + static_cast<size_t>(c) * n];
-  for (int c0 = (nscol - 1) / kPanel * kPanel; c0 >= 0; c0 -= kPanel) {
-    const int w = std::min(kPanel, nscol - c0), below = nscol - c0 - w;
-    const float* P = panel(s, c0, w);
-    float* y = Y + k1 + c0;
-    if (nrhs == 1) {
-      if (m > 0) sgemv_("T", &m, &w, &kMinusOne, P + nscol, &nsrow, E, &kInc, &kOne, y, &kInc);
-      if (below > 0) sgemv_("T", &below, &w, &kMinusOne, P + c0 + w, &nsrow, y + w, &kInc, &kOne, y, &kInc);
-      strsv_("L", "T", "N", &w, P + c0, &nsrow, y, &kInc);
-    } else {
-      if (m > 0) sgemm_("T", "N", &w, &nrhs, &m, &kMinusOne, P + nscol, &nsrow, E, &m, &kOne, y, &n);
-      if (below > 0)
-        sgemm_("T", "N", &w, &nrhs, &below, &kMinusOne, P + c0 + w, &nsrow, y + w, &n, &kOne, y, &n);
-      strsm_("L", "L", "T", "N", &w, &nrhs, &kOne, P + c0, &nsrow, y, &n);
-    }
-  }
-}
-
-// x = S L⁻ᵀ L⁻¹ S b in the permuted numbering: forward over the supernodes (diagonal
+// L Lᵀ y = y in place, from the float values: forward over the supernodes (diagonal
 // triangle, then the rows below receive −L₂₁ x₁), backward in reverse.
-void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
-  FE2_CHECK(ready_, "solve before factorize");
+void FloatCholeskyFactor::substitute_float(float* Y, int nrhs) {
   const int n = n_;
-  const int ns = nsuper();
   const int* Super = super();
   const int* Lpi = pi();
   const int* Lpx = px();
   const int* Ls = rows();
-  const int* P = perm();
-  y_.resize(static_cast<size_t>(n) * nrhs);
-  e_.resize(static_cast<size_t>(max_rows_) * nrhs);
-  // Each column is divided by its largest |S b| before it is rounded (and multiplied back
-  // after), so right-hand sides of any magnitude stay inside float's range.
-  column_scale_.assign(nrhs, 1.0);
-  for (int c = 0; c < nrhs; ++c) {
-    const double* b = B + static_cast<size_t>(c) * n;
-    double biggest = 0.0;
-    for (int k = 0; k < n; ++k) biggest = std::max(biggest, std::abs(b[k] * scale_[k]));
-    if (biggest > 0.0 && std::isfinite(biggest)) column_scale_[c] = biggest;
-    const double inv = 1.0 / column_scale_[c];
-    float* y = y_.data() + static_cast<size_t>(c) * n;
-    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[P[k]] * scale_[P[k]] * inv);
-  }
-  float* Y = y_.data();
   float* E = e_.data();
-  const bool in_half = Lh_.data != nullptr;  // after compact(); the float values before
-  for (int s = 0; s < ns; ++s) {
+  for (int s = 0; s < nsuper(); ++s) {
     const int k1 = Super[s], nscol = Super[s + 1] - k1;
     const int psi = Lpi[s], nsrow = Lpi[s + 1] - psi, m = nsrow - nscol;
-    if (in_half) {
-      forward_half(s, Y, E, nrhs);
-      continue;
-    }
     const float* Lsx = Lx_.data + Lpx[s];
     if (nrhs == 1) {
       strsv_("L", "N", "N", &nscol, Lsx, &nsrow, Y + k1, &kInc);
@@ -480,13 +412,9 @@ void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
           Y[Ls[psi + nscol + i] + static_cast<size_t>(c) * n] -= E[i + static_cast<size_t>(c) * m];
     }
   }
-  for (int s = ns - 1; s >= 0; --s) {
+  for (int s = nsuper() - 1; s >= 0; --s) {
     const int k1 = Super[s], nscol = Super[s + 1] - k1;
     const int psi = Lpi[s], nsrow = Lpi[s + 1] - psi, m = nsrow - nscol;
-    if (in_half) {
-      backward_half(s, Y, E, nrhs);
-      continue;
-    }
     const float* Lsx = Lx_.data + Lpx[s];
     if (nrhs == 1) {
       if (m > 0) {
@@ -504,6 +432,41 @@ void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
       strsm_("L", "L", "T", "N", &nscol, &nrhs, &kOne, Lsx, &nsrow, Y + k1, &n);
     }
   }
+}
+
+// The same from the binary16 values, one right-hand side at a time: each solve streams
+// the factor's 2 bytes per entry once, widening them in registers.
+void FloatCholeskyFactor::substitute_half(float* Y, int nrhs) {
+  for (int c = 0; c < nrhs; ++c) {
+    float* y = Y + static_cast<size_t>(c) * n_;
+    for (int s = 0; s < nsuper(); ++s) forward_half(s, y, e_.data());
+    for (int s = nsuper() - 1; s >= 0; --s) backward_half(s, y, e_.data());
+  }
+}
+
+// x = S P (L Lᵀ)⁻¹ Pᵀ S b: scaled and permuted into float, substituted, and back.
+void FloatCholeskyFactor::solve(const double* B, double* X, int nrhs) {
+  FE2_CHECK(ready_, "solve before factorize");
+  const int n = n_;
+  const int* P = perm();
+  y_.resize(static_cast<size_t>(n) * nrhs);
+  e_.resize(static_cast<size_t>(max_rows_) * nrhs);
+  // Each column is divided by its largest |S b| before it is rounded (and multiplied back
+  // after), so right-hand sides of any magnitude stay inside float's range.
+  column_scale_.assign(nrhs, 1.0);
+  for (int c = 0; c < nrhs; ++c) {
+    const double* b = B + static_cast<size_t>(c) * n;
+    double biggest = 0.0;
+    for (int k = 0; k < n; ++k) biggest = std::max(biggest, std::abs(b[k] * scale_[k]));
+    if (biggest > 0.0 && std::isfinite(biggest)) column_scale_[c] = biggest;
+    const double inv = 1.0 / column_scale_[c];
+    float* y = y_.data() + static_cast<size_t>(c) * n;
+    for (int k = 0; k < n; ++k) y[k] = static_cast<float>(b[P[k]] * scale_[P[k]] * inv);
+  }
+  if (Lh_.data)  // after compact()
+    substitute_half(y_.data(), nrhs);
+  else
+    substitute_float(y_.data(), nrhs);
   for (int c = 0; c < nrhs; ++c) {
     const float* y = y_.data() + static_cast<size_t>(c) * n;
     double* x = X + static_cast<size_t>(c) * n;
