@@ -5,6 +5,23 @@
 
 namespace fe2 {
 
+namespace {
+
+/// w = Σ y_j Az_j, when that stands for A x = A Σ y_j z_j as well as a product would:
+/// its rounding is ≈ j·eps·Σ|y_j|‖Az_j‖, within a few eps of ‖w‖ unless the terms cancel.
+/// Where they cancel by more than half (false returned) the caller forms A x itself.
+bool combine_products(const std::vector<Vec>& Az, const Vec& y, Vec& w) {
+  w = y[0] * Az[0];
+  double bound = std::abs(y[0]) * Az[0].norm();
+  for (Eigen::Index i = 1; i < y.size(); ++i) {
+    w += y[i] * Az[i];
+    bound += std::abs(y[i]) * Az[i].norm();
+  }
+  return w.norm() >= 0.5 * bound;
+}
+
+}  // namespace
+
 GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x, double tol,
                   int restart, int max_iterations, const ResidualFloor& floor) {
   const Eigen::Index n = b.size();
@@ -31,11 +48,13 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
   Z.reserve(m);
   Eigen::MatrixXd Hm = Eigen::MatrixXd::Zero(m + 1, m);  // Hessenberg, Givens-rotated
   Vec cs(m), sn(m), g(m + 1);
-  // A z₀ of the first cycle from x = 0, before Gram–Schmidt overwrites it: if that cycle
-  // ends after one iteration, x = y₀ z₀ and A x = y₀ (A z₀) to one rounding per entry
-  // (below the floor eps·|A||x|), so the true residual needs no second product. With a
-  // fresh preconditioner that is every Step 1 solve: one operator application, not two.
-  Vec Az0;
+  // A z_j of the first cycle from x = 0, kept before Gram–Schmidt overwrites them: if
+  // that cycle ends within kKeptProducts iterations, x = Σ y_j z_j and A x = Σ y_j (A z_j)
+  // to a few roundings per entry, so the true residual needs no further product. With a
+  // fresh preconditioner that is every Step 1 solve (one or two iterations, by the
+  // factor's precision): one operator application per iteration, none after.
+  constexpr int kKeptProducts = 4;
+  std::vector<Vec> Az;
   bool first_cycle = true;
 
   while (res.iterations < max_iterations) {
@@ -49,7 +68,7 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
       if (static_cast<int>(V.size()) <= j + 1) V.emplace_back(n);
       Minv(V[j], Z[j]);
       A(Z[j], w);
-      if (first_cycle && from_zero && j == 0) Az0 = w;
+      if (first_cycle && from_zero && j < kKeptProducts) Az.push_back(w);
       ++res.iterations;
       // Modified Gram–Schmidt
       for (int i = 0; i <= j; ++i) {
@@ -78,9 +97,7 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
     // x += M⁻¹ V y = Z y, with H y = g (upper triangular j x j)
     const Vec y = Hm.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
     for (int i = 0; i < j; ++i) x += y[i] * Z[i];
-    if (first_cycle && from_zero && j == 1)
-      w = y[0] * Az0;
-    else
+    if (!(first_cycle && from_zero && j >= 1 && j <= kKeptProducts && combine_products(Az, y, w)))
       A(x, w);
     first_cycle = false;
     r = b - w;

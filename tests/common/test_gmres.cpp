@@ -59,6 +59,40 @@ TEST(Gmres, OneIterationFromZeroAppliesTheOperatorOnce) {
   EXPECT_EQ(p.applications, 1);  // no second product for the true residual
 }
 
+// A coarser preconditioner (a binary16 factor, or a factor one load step stale) takes a
+// few iterations. The first cycle's A z_j, kept before Gram–Schmidt, give A x = Σ y_j A z_j:
+// one product per iteration and none after, and still the true residual (solve_and_check
+// compares it with b − A x recomputed).
+TEST(Gmres, AFewIterationsFromZeroApplyTheOperatorOncePerIteration) {
+  for (const double perturbation : {1e-4, 1e-3, 3e-3}) {
+    Problem p = spd_problem(40);
+    std::srand(11);
+    const Eigen::MatrixXd E = Eigen::MatrixXd::Random(40, 40);
+    const Eigen::MatrixXd A_near = p.A + perturbation * p.A.norm() / 40 * (E + E.transpose());
+    auto llt = std::make_shared<const Eigen::LLT<Eigen::MatrixXd>>(A_near);
+    const LinearOp M = [llt](const Vec& x, Vec& y) { y = llt->solve(x); };
+    Vec x = Vec::Zero(40);
+    const GmresResult res = solve_and_check(p, M, x);
+    EXPECT_GE(res.iterations, 2) << perturbation;
+    EXPECT_LE(res.iterations, 4) << perturbation;
+    EXPECT_EQ(p.applications, res.iterations) << perturbation;
+  }
+}
+
+// Kept products whose combination cancels carry their rounding into the residual; there
+// the true residual is formed by a product. With A = I, b = (1, 1) and M = diag(1e4, 1),
+// z₀ = (1e4, 1) and z₁ ∝ (1e4, −1): x = b = y₀z₀ + y₁z₁ with |y₀z₀| ≈ 5e3 |x|.
+TEST(Gmres, CancellingKeptProductsAreReplacedByAProduct) {
+  Problem p;
+  p.A = Eigen::MatrixXd::Identity(2, 2);
+  p.b = Vec::Ones(2);
+  const LinearOp M = [](const Vec& x, Vec& y) { y = x; y[0] *= 1e4; };
+  Vec x = Vec::Zero(2);
+  const GmresResult res = solve_and_check(p, M, x);
+  EXPECT_EQ(res.iterations, 2);
+  EXPECT_EQ(p.applications, 3);
+}
+
 TEST(Gmres, AnInexactPreconditionerStillChecksTheTrueResidual) {
   Problem p = spd_problem(40);
   const Vec d = p.A.diagonal();
