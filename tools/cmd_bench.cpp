@@ -131,6 +131,16 @@ int bench_unit(const BenchOptions& o) {
       }
     }
     if (cholmod) *cholmod_ms = median(factorize);
+    // One preconditioner application alone (a single-RHS solve with the kept factor):
+    // what each GMRES iteration pays besides a product with K.
+    std::vector<double> solve;
+    const LinearOp M = unit.preconditioner();
+    Vec b = Vec::Ones(model->num_dofs()), x(model->num_dofs());
+    for (int r = 0; r < std::max(o.repeat, 5); ++r) {
+      const double t = thread_cpu_seconds();
+      M(b, x);
+      solve.push_back(1e3 * (thread_cpu_seconds() - t));
+    }
 
     // A whole Newton solve of a second unit from w = 0 at Z̄ = Z0, refreshing at every
     // iteration: each iteration runs on a fresh factor at the Step 1 tolerance the run
@@ -161,6 +171,7 @@ int bench_unit(const BenchOptions& o) {
               {"iteration_ms", median(iteration)},
               {"iteration_solve_ms", median(iteration_solve)},
               {"iteration_gmres_iterations", median(gmres_its)},
+              {"factor_solve_ms", median(solve)},
               {"iteration_stale_ms", median(iteration_stale)},
               {"iteration_stale_gmres_iterations", median(gmres_stale)},
               {"iteration_10x_staler_ms", median(iteration_staler)},

@@ -86,6 +86,8 @@ class MicroUnit final : public PointModel {
   const RefreshPolicy& policy() const { return policy_; }
   FactorKind factor_kind() const { return factor_kind_; }
   const SparseFactor* factor() const { return factor_.get(); }
+  /// y = K̃⁻¹ x with the cached factor: one GMRES preconditioner application.
+  LinearOp preconditioner() const;
   /// Point history of every Gauss point at the last assembled state, and at the last commit.
   const std::vector<double>& history() const { return history_; }
   /// T_a averaged over the Gauss points of the contracting cells (0 without any).
@@ -102,8 +104,6 @@ class MicroUnit final : public PointModel {
   double residual_floor();
   /// y = K x for GMRES (its first product also keeps |K|𝟙 for residual_floor()).
   LinearOp K_operator();
-  /// y = K̃⁻¹ x with the cached factor.
-  LinearOp preconditioner() const;
   /// The residual a solve with K can reach at x, for GMRES's stopping test.
   ResidualFloor solve_floor() const;
 
