@@ -132,6 +132,14 @@ class FloatCholeskyFactor final : public SparseFactor {
   /// The forward (L y = b) and backward (Lᵀ x = y) steps of supernode s on one
   /// right-hand side y, reading the binary16 values directly (binary16_columns.h);
   /// w holds the supernode's rows of y while it is worked on.
+  /// Supernode s of the binary16 factor: its first column k1, nscol columns of nsrow
+  /// rows (leading dimension nsrow), the row indices under its own columns.
+  struct HalfSupernode {
+    int k1, nscol, nsrow;
+    const int* below;
+    const uint16_t* L;
+  };
+  HalfSupernode half_supernode(int s) const;
   void forward_half(int s, float* y, float* w) const;
   void backward_half(int s, float* y, float* w) const;
   /// L Lᵀ Y = Y in place (nrhs columns of n_), from Lx_ or from Lh_.
@@ -342,11 +350,18 @@ void FloatCholeskyFactor::keep_in_half() {
 // kMaxHalfColumns columns: the block's triangle L_bb x_b = w_b, then every row under the
 // block takes w −= L_·b x_b in one pass over the block's columns; the rows below the
 // supernode then receive what they gathered.
+FloatCholeskyFactor::HalfSupernode FloatCholeskyFactor::half_supernode(int s) const {
+  HalfSupernode h;
+  h.k1 = super()[s];
+  h.nscol = super()[s + 1] - h.k1;
+  h.nsrow = pi()[s + 1] - pi()[s];
+  h.below = rows() + pi()[s] + h.nscol;
+  h.L = Lh_.data + px()[s];
+  return h;
+}
+
 void FloatCholeskyFactor::forward_half(int s, float* y, float* w) const {
-  const int k1 = super()[s], nscol = super()[s + 1] - k1;
-  const int psi = pi()[s], nsrow = pi()[s + 1] - psi;
-  const int* below = rows() + psi + nscol;
-  const uint16_t* Ls = Lh_.data + px()[s];
+  const auto [k1, nscol, nsrow, below, Ls] = half_supernode(s);
   std::copy(y + k1, y + k1 + nscol, w);
   std::fill(w + nscol, w + nsrow, 0.0f);
   for (int j0 = 0; j0 < nscol; j0 += kMaxHalfColumns) {
@@ -365,10 +380,7 @@ void FloatCholeskyFactor::forward_half(int s, float* y, float* w) const {
 // Backward, last block first: x_b = L_bbᵀ⁻¹ (w_b − L_·bᵀ w_below), the dot products with
 // every row under the block taken in one pass over its columns.
 void FloatCholeskyFactor::backward_half(int s, float* y, float* w) const {
-  const int k1 = super()[s], nscol = super()[s + 1] - k1;
-  const int psi = pi()[s], nsrow = pi()[s + 1] - psi;
-  const int* below = rows() + psi + nscol;
-  const uint16_t* Ls = Lh_.data + px()[s];
+  const auto [k1, nscol, nsrow, below, Ls] = half_supernode(s);
   std::copy(y + k1, y + k1 + nscol, w);
   for (int i = 0; i < nsrow - nscol; ++i) w[nscol + i] = y[below[i]];
   for (int j0 = (nscol - 1) / kMaxHalfColumns * kMaxHalfColumns; j0 >= 0; j0 -= kMaxHalfColumns) {

@@ -3,6 +3,7 @@
 #include "common/error.h"
 
 #include <cstring>
+#include <type_traits>
 #if defined(__F16C__) && defined(__FMA__) && defined(__AVX__)
 #include <immintrin.h>
 #define FE2_HALF_VECTORS 1  // 8 entries per instruction; the scalar loops finish the tails
@@ -85,28 +86,29 @@ void dot_columns(int n, const uint16_t* L, std::ptrdiff_t ld, const float* w, fl
     for (int c = 0; c < C; ++c) d[c] += half_to_float(L[c * ld + i]) * w[i];
 }
 
+/// body(std::integral_constant<int, ncols>) for ncols in [1, kMaxHalfColumns].
+template <class Body>
+void with_column_count(int ncols, Body body) {
+  switch (ncols) {
+    case 1: return body(std::integral_constant<int, 1>{});
+    case 2: return body(std::integral_constant<int, 2>{});
+    case 3: return body(std::integral_constant<int, 3>{});
+    case 4: return body(std::integral_constant<int, 4>{});
+    default: FE2_CHECK(false, "the binary16 kernels take 1 to {} columns, not {}", kMaxHalfColumns, ncols);
+  }
+}
+static_assert(kMaxHalfColumns == 4, "with_column_count dispatches 1 to 4 columns");
+
 }  // namespace
 
 void subtract_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld,
                            const float* x, float* w) {
-  switch (ncols) {
-    case 1: return subtract_columns<1>(n, L, ld, x, w);
-    case 2: return subtract_columns<2>(n, L, ld, x, w);
-    case 3: return subtract_columns<3>(n, L, ld, x, w);
-    case 4: return subtract_columns<4>(n, L, ld, x, w);
-    default: FE2_CHECK(false, "subtract_half_columns takes 1 to 4 columns");
-  }
+  with_column_count(ncols, [&](auto C) { subtract_columns<C()>(n, L, ld, x, w); });
 }
 
 void dot_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld, const float* w,
                       float* d) {
-  switch (ncols) {
-    case 1: return dot_columns<1>(n, L, ld, w, d);
-    case 2: return dot_columns<2>(n, L, ld, w, d);
-    case 3: return dot_columns<3>(n, L, ld, w, d);
-    case 4: return dot_columns<4>(n, L, ld, w, d);
-    default: FE2_CHECK(false, "dot_half_columns takes 1 to 4 columns");
-  }
+  with_column_count(ncols, [&](auto C) { dot_columns<C()>(n, L, ld, w, d); });
 }
 
 }  // namespace fe2
