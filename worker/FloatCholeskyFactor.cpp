@@ -127,19 +127,25 @@ class FloatCholeskyFactor final : public SparseFactor {
   void analyse(const SparseMatrix& K);
   void load_scaled(const SparseMatrix& K);
   void numeric();
-  /// Rounds the float factor to binary16 and frees the float values.
+  /// Rounds the float factor to binary16 (packed) and frees the float values.
   void keep_in_half();
-  /// The forward (L y = b) and backward (Lᵀ x = y) steps of supernode s on one
-  /// right-hand side y, reading the binary16 values directly (binary16_columns.h);
-  /// w holds the supernode's rows of y while it is worked on.
   /// Supernode s of the binary16 factor: its first column k1, nscol columns of nsrow
-  /// rows (leading dimension nsrow), the row indices under its own columns.
+  /// rows, the row indices under its own columns; packed, column c holding rows c to
+  /// nsrow − 1 only.
   struct HalfSupernode {
     int k1, nscol, nsrow;
     const int* below;
     const uint16_t* L;
+    size_t column_start(int c) const {
+      return static_cast<size_t>(c) * nsrow - static_cast<size_t>(c) * (c - 1) / 2;
+    }
+    /// L(c, c), L(c + 1, c), … of the supernode's column c.
+    const uint16_t* column(int c) const { return L + column_start(c); }
   };
   HalfSupernode half_supernode(int s) const;
+  /// The forward (L y = b) and backward (Lᵀ x = y) steps of supernode s on one
+  /// right-hand side y, reading the binary16 values directly (binary16_columns.h);
+  /// w holds the supernode's rows of y while it is worked on.
   void forward_half(int s, float* y, float* w) const;
   void backward_half(int s, float* y, float* w) const;
   /// L Lᵀ Y = Y in place (nrhs columns of n_), from Lx_ or from Lh_.
@@ -165,6 +171,7 @@ class FloatCholeskyFactor final : public SparseFactor {
   bool half_storage_ = false;
   FloatArray Lx_;                 ///< the numeric factor, supernode by supernode
   HalfArray Lh_;                  ///< the same kept in binary16 (half_storage_; Lx_ released)
+  std::vector<size_t> half_start_; ///< where each supernode starts in Lh_ (packed)
   // Workspace of the numeric factorization and the solves.
   std::vector<int> head_, next_, lpos_, map_, relative_map_;
   std::vector<float> update_, y_, e_;
@@ -340,58 +347,78 @@ void FloatCholeskyFactor::numeric() {
   }
 }
 
+// Only the lower trapezoid of each supernode is kept: CHOLMOD's nscol × nsrow blocks
+// also hold the strictly upper triangle of the diagonal block, unread by any solve
+// (a quarter of the entries at ≈ 26k DOF).
 void FloatCholeskyFactor::keep_in_half() {
-  Lh_.allocate(Lx_.size);
-  floats_to_half(Lx_.data, Lh_.data, Lx_.size);
+  const int ns = nsuper();
+  half_start_.assign(ns + 1, 0);
+  for (int s = 0; s < ns; ++s) {
+    const size_t nscol = super()[s + 1] - super()[s], nsrow = pi()[s + 1] - pi()[s];
+    half_start_[s + 1] = half_start_[s] + nscol * nsrow - nscol * (nscol - 1) / 2;
+  }
+  Lh_.allocate(half_start_[ns]);
+  for (int s = 0; s < ns; ++s) {
+    const HalfSupernode h = half_supernode(s);
+    for (int c = 0; c < h.nscol; ++c)
+      floats_to_half(Lx_.data + px()[s] + static_cast<size_t>(c) * h.nsrow + c,
+                     Lh_.data + half_start_[s] + h.column_start(c), h.nsrow - c);
+  }
   Lx_.release();
 }
 
-// Forward: w = (y of the supernode's columns, 0 for its rows below). Blocks of
-// kMaxHalfColumns columns: the block's triangle L_bb x_b = w_b, then every row under the
-// block takes w −= L_·b x_b in one pass over the block's columns; the rows below the
-// supernode then receive what they gathered.
 FloatCholeskyFactor::HalfSupernode FloatCholeskyFactor::half_supernode(int s) const {
   HalfSupernode h;
   h.k1 = super()[s];
   h.nscol = super()[s + 1] - h.k1;
   h.nsrow = pi()[s + 1] - pi()[s];
   h.below = rows() + pi()[s] + h.nscol;
-  h.L = Lh_.data + px()[s];
+  h.L = Lh_.data ? Lh_.data + half_start_[s] : nullptr;
   return h;
 }
 
+// Forward: w = (y of the supernode's columns, 0 for its rows below). Blocks of
+// kMaxHalfColumns columns: the block's triangle L_bb x_b = w_b, then every row under the
+// block takes w −= L_·b x_b in one pass over the block's columns; the rows below the
+// supernode then receive what they gathered.
 void FloatCholeskyFactor::forward_half(int s, float* y, float* w) const {
-  const auto [k1, nscol, nsrow, below, Ls] = half_supernode(s);
+  const HalfSupernode h = half_supernode(s);
+  const int k1 = h.k1, nscol = h.nscol, nsrow = h.nsrow;
   std::copy(y + k1, y + k1 + nscol, w);
   std::fill(w + nscol, w + nsrow, 0.0f);
+  const uint16_t* col[kMaxHalfColumns];
   for (int j0 = 0; j0 < nscol; j0 += kMaxHalfColumns) {
     const int b = std::min(kMaxHalfColumns, nscol - j0);
-    const uint16_t* Lb = Ls + static_cast<size_t>(j0) * nsrow + j0;  // L(j0, j0)
     for (int c = 0; c < b; ++c) {
-      w[j0 + c] /= half_to_float(Lb[c * nsrow + c]);
-      for (int r = c + 1; r < b; ++r) w[j0 + r] -= half_to_float(Lb[c * nsrow + r]) * w[j0 + c];
+      col[c] = h.column(j0 + c);  // from L(j0 + c, j0 + c) down
+      w[j0 + c] /= half_to_float(col[c][0]);
+      for (int r = c + 1; r < b; ++r) w[j0 + r] -= half_to_float(col[c][r - c]) * w[j0 + c];
+      col[c] += b - c;  // from row j0 + b down
     }
-    subtract_half_columns(b, nsrow - j0 - b, Lb + b, nsrow, w + j0, w + j0 + b);
+    subtract_half_columns(b, nsrow - j0 - b, col, w + j0, w + j0 + b);
   }
   std::copy(w, w + nscol, y + k1);
-  for (int i = 0; i < nsrow - nscol; ++i) y[below[i]] += w[nscol + i];
+  for (int i = 0; i < nsrow - nscol; ++i) y[h.below[i]] += w[nscol + i];
 }
 
 // Backward, last block first: x_b = L_bbᵀ⁻¹ (w_b − L_·bᵀ w_below), the dot products with
 // every row under the block taken in one pass over its columns.
 void FloatCholeskyFactor::backward_half(int s, float* y, float* w) const {
-  const auto [k1, nscol, nsrow, below, Ls] = half_supernode(s);
+  const HalfSupernode h = half_supernode(s);
+  const int k1 = h.k1, nscol = h.nscol, nsrow = h.nsrow;
   std::copy(y + k1, y + k1 + nscol, w);
-  for (int i = 0; i < nsrow - nscol; ++i) w[nscol + i] = y[below[i]];
+  for (int i = 0; i < nsrow - nscol; ++i) w[nscol + i] = y[h.below[i]];
+  const uint16_t* below_block[kMaxHalfColumns];
   for (int j0 = (nscol - 1) / kMaxHalfColumns * kMaxHalfColumns; j0 >= 0; j0 -= kMaxHalfColumns) {
     const int b = std::min(kMaxHalfColumns, nscol - j0);
-    const uint16_t* Lb = Ls + static_cast<size_t>(j0) * nsrow + j0;
+    for (int c = 0; c < b; ++c) below_block[c] = h.column(j0 + c) + (b - c);
     float d[kMaxHalfColumns];
-    dot_half_columns(b, nsrow - j0 - b, Lb + b, nsrow, w + j0 + b, d);
+    dot_half_columns(b, nsrow - j0 - b, below_block, w + j0 + b, d);
     for (int c = b - 1; c >= 0; --c) {
+      const uint16_t* Lc = h.column(j0 + c);
       float t = w[j0 + c] - d[c];
-      for (int r = c + 1; r < b; ++r) t -= half_to_float(Lb[c * nsrow + r]) * w[j0 + r];
-      w[j0 + c] = t / half_to_float(Lb[c * nsrow + c]);
+      for (int r = c + 1; r < b; ++r) t -= half_to_float(Lc[r - c]) * w[j0 + r];
+      w[j0 + c] = t / half_to_float(Lc[0]);
     }
   }
   std::copy(w, w + nscol, y + k1);
@@ -447,7 +474,9 @@ void FloatCholeskyFactor::substitute_float(float* Y, int nrhs) {
 }
 
 // The same from the binary16 values, one right-hand side at a time: each solve streams
-// the factor's 2 bytes per entry once, widening them in registers.
+// the factor's 2 bytes per entry twice (forward, backward), widening them in registers.
+// k right-hand sides stream it k times; a unit's nine-column χ solves run before
+// compact(), on the float factor, so only single GMRES solves come here.
 void FloatCholeskyFactor::substitute_half(float* Y, int nrhs) {
   for (int c = 0; c < nrhs; ++c) {
     float* y = Y + static_cast<size_t>(c) * n_;

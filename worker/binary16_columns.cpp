@@ -4,8 +4,10 @@
 
 #include <cstring>
 #include <type_traits>
-#if defined(__F16C__) && defined(__FMA__) && defined(__AVX__)
+#ifdef __F16C__
 #include <immintrin.h>
+#endif
+#if defined(__F16C__) && defined(__FMA__)
 #define FE2_HALF_VECTORS 1  // 8 entries per instruction; the scalar loops finish the tails
 #endif
 
@@ -13,7 +15,7 @@ namespace fe2 {
 
 void floats_to_half(const float* from, uint16_t* to, size_t count) {
   size_t i = 0;
-#ifdef FE2_HALF_VECTORS
+#ifdef __F16C__
   for (; i + 8 <= count; i += 8)
     _mm_storeu_si128(reinterpret_cast<__m128i*>(to + i),
                      _mm256_cvtps_ph(_mm256_loadu_ps(from + i), _MM_FROUND_TO_NEAREST_INT));
@@ -42,20 +44,20 @@ inline float sum_lanes(__m256 v) {
 // The columns are a compile-time count so their widened entries and x stay in registers:
 // per 8 rows, C loads of 16 bytes and one load and store of w.
 template <int C>
-void subtract_columns(int n, const uint16_t* L, std::ptrdiff_t ld, const float* x, float* w) {
+void subtract_columns(int n, const uint16_t* const* L, const float* x, float* w) {
   int i = 0;
 #ifdef FE2_HALF_VECTORS
   __m256 xc[C];
   for (int c = 0; c < C; ++c) xc[c] = _mm256_set1_ps(x[c]);
   for (; i + 8 <= n; i += 8) {
     __m256 acc = _mm256_loadu_ps(w + i);
-    for (int c = 0; c < C; ++c) acc = _mm256_fnmadd_ps(widen(L + c * ld + i), xc[c], acc);
+    for (int c = 0; c < C; ++c) acc = _mm256_fnmadd_ps(widen(L[c] + i), xc[c], acc);
     _mm256_storeu_ps(w + i, acc);
   }
 #endif
   for (; i < n; ++i) {
     float t = w[i];
-    for (int c = 0; c < C; ++c) t -= half_to_float(L[c * ld + i]) * x[c];
+    for (int c = 0; c < C; ++c) t -= half_to_float(L[c][i]) * x[c];
     w[i] = t;
   }
 }
@@ -63,7 +65,7 @@ void subtract_columns(int n, const uint16_t* L, std::ptrdiff_t ld, const float* 
 // Two accumulators per column (16 rows a round) so the C·2 FMA chains hide the FMA
 // latency; the lanes are summed once at the end.
 template <int C>
-void dot_columns(int n, const uint16_t* L, std::ptrdiff_t ld, const float* w, float* d) {
+void dot_columns(int n, const uint16_t* const* L, const float* w, float* d) {
   int i = 0;
   for (int c = 0; c < C; ++c) d[c] = 0.0f;
 #ifdef FE2_HALF_VECTORS
@@ -72,18 +74,18 @@ void dot_columns(int n, const uint16_t* L, std::ptrdiff_t ld, const float* w, fl
   for (; i + 16 <= n; i += 16) {
     const __m256 w0 = _mm256_loadu_ps(w + i), w1 = _mm256_loadu_ps(w + i + 8);
     for (int c = 0; c < C; ++c) {
-      a0[c] = _mm256_fmadd_ps(widen(L + c * ld + i), w0, a0[c]);
-      a1[c] = _mm256_fmadd_ps(widen(L + c * ld + i + 8), w1, a1[c]);
+      a0[c] = _mm256_fmadd_ps(widen(L[c] + i), w0, a0[c]);
+      a1[c] = _mm256_fmadd_ps(widen(L[c] + i + 8), w1, a1[c]);
     }
   }
   for (; i + 8 <= n; i += 8) {
     const __m256 w0 = _mm256_loadu_ps(w + i);
-    for (int c = 0; c < C; ++c) a0[c] = _mm256_fmadd_ps(widen(L + c * ld + i), w0, a0[c]);
+    for (int c = 0; c < C; ++c) a0[c] = _mm256_fmadd_ps(widen(L[c] + i), w0, a0[c]);
   }
   for (int c = 0; c < C; ++c) d[c] = sum_lanes(_mm256_add_ps(a0[c], a1[c]));
 #endif
   for (; i < n; ++i)
-    for (int c = 0; c < C; ++c) d[c] += half_to_float(L[c * ld + i]) * w[i];
+    for (int c = 0; c < C; ++c) d[c] += half_to_float(L[c][i]) * w[i];
 }
 
 /// body(std::integral_constant<int, ncols>) for ncols in [1, kMaxHalfColumns].
@@ -101,14 +103,14 @@ static_assert(kMaxHalfColumns == 4, "with_column_count dispatches 1 to 4 columns
 
 }  // namespace
 
-void subtract_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld,
-                           const float* x, float* w) {
-  with_column_count(ncols, [&](auto C) { subtract_columns<C()>(n, L, ld, x, w); });
+void subtract_half_columns(int ncols, int n, const uint16_t* const* columns, const float* x,
+                           float* w) {
+  with_column_count(ncols, [&](auto C) { subtract_columns<C()>(n, columns, x, w); });
 }
 
-void dot_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld, const float* w,
+void dot_half_columns(int ncols, int n, const uint16_t* const* columns, const float* w,
                       float* d) {
-  with_column_count(ncols, [&](auto C) { dot_columns<C()>(n, L, ld, w, d); });
+  with_column_count(ncols, [&](auto C) { dot_columns<C()>(n, columns, w, d); });
 }
 
 }  // namespace fe2

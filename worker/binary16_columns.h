@@ -22,14 +22,14 @@ inline float half_to_float(uint16_t bits) {  // inline: the solves' triangles ca
 /// Most columns the two kernels below take in one pass.
 constexpr int kMaxHalfColumns = 4;
 
-/// w[i] −= Σ_c L[i + c·ld] x[c] for i in [0, n), over `ncols` ≤ kMaxHalfColumns columns
-/// of L at stride ld: the update a forward substitution sends below solved columns.
-void subtract_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld,
-                           const float* x, float* w);
+/// w[i] −= Σ_c L_c[i] x[c] for i in [0, n), over `ncols` ≤ kMaxHalfColumns columns
+/// L_c = columns[c]: the update a forward substitution sends below solved columns.
+void subtract_half_columns(int ncols, int n, const uint16_t* const* columns, const float* x,
+                           float* w);
 
-/// d[c] = Σ_i L[i + c·ld] w[i] for i in [0, n), over `ncols` ≤ kMaxHalfColumns columns:
-/// what a backward substitution gathers from the rows below.
-void dot_half_columns(int ncols, int n, const uint16_t* L, std::ptrdiff_t ld, const float* w,
+/// d[c] = Σ_i L_c[i] w[i] for i in [0, n), over `ncols` ≤ kMaxHalfColumns columns
+/// L_c = columns[c]: what a backward substitution gathers from the rows below.
+void dot_half_columns(int ncols, int n, const uint16_t* const* columns, const float* w,
                       float* d);
 
 }  // namespace fe2

@@ -16,6 +16,7 @@ struct Columns {
   int n = 0;
   std::ptrdiff_t ld = 0;
   std::vector<uint16_t> L;  ///< ncols columns of ld entries, binary16
+  std::vector<const uint16_t*> columns;
   std::vector<float> x, w;
 };
 
@@ -24,12 +25,15 @@ Columns random_columns(int ncols, int n, unsigned seed) {
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   Columns c;
   c.n = n;
-  c.ld = n + 3;  // a stride longer than the rows read, as in a supernode
+  c.ld = n + 3;  // columns apart, as in a supernode
   std::vector<float> values(static_cast<size_t>(c.ld) * ncols);
   for (float& v : values) v = u(gen);
   c.L.resize(values.size());
   floats_to_half(values.data(), c.L.data(), values.size());
-  for (int k = 0; k < ncols; ++k) c.x.push_back(u(gen));
+  for (int k = 0; k < ncols; ++k) {
+    c.columns.push_back(c.L.data() + k * c.ld);
+    c.x.push_back(u(gen));
+  }
   for (int i = 0; i < n; ++i) c.w.push_back(u(gen));
   return c;
 }
@@ -62,8 +66,8 @@ TEST(Binary16Columns, SubtractAndDotMatchDoubleLoopsOverTheRoundedValues) {
           d_ref[k] += Lik * c.w[i];
         }
       std::vector<float> d(kMaxHalfColumns, -1.0f);
-      dot_half_columns(ncols, n, c.L.data(), c.ld, c.w.data(), d.data());
-      subtract_half_columns(ncols, n, c.L.data(), c.ld, c.x.data(), c.w.data());
+      dot_half_columns(ncols, n, c.columns.data(), c.w.data(), d.data());
+      subtract_half_columns(ncols, n, c.columns.data(), c.x.data(), c.w.data());
       // float accumulation of n products of size ≤ 1: a few float ulps of n.
       const double tol = 4 * n * 0x1p-24 + 1e-7;
       for (int i = 0; i < n; ++i)
@@ -75,10 +79,11 @@ TEST(Binary16Columns, SubtractAndDotMatchDoubleLoopsOverTheRoundedValues) {
 
 TEST(Binary16Columns, MoreColumnsThanTheKernelsTakeAreRefused) {
   Columns c = random_columns(1, 8, 1);
+  std::vector<const uint16_t*> columns(kMaxHalfColumns + 1, c.L.data());
   std::vector<float> x(kMaxHalfColumns + 1, 1.0f), d(kMaxHalfColumns + 1);
-  EXPECT_ANY_THROW(subtract_half_columns(kMaxHalfColumns + 1, 8, c.L.data(), 8, x.data(),
+  EXPECT_ANY_THROW(subtract_half_columns(kMaxHalfColumns + 1, 8, columns.data(), x.data(),
                                          c.w.data()));
-  EXPECT_ANY_THROW(dot_half_columns(0, 8, c.L.data(), 8, c.w.data(), d.data()));
+  EXPECT_ANY_THROW(dot_half_columns(0, 8, columns.data(), c.w.data(), d.data()));
 }
 
 }  // namespace

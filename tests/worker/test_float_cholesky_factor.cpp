@@ -139,7 +139,11 @@ TEST(FloatCholeskyFactor, HalfStorageSolvesToHalfAccuracyInBlocks) {
   half->solve(B.data(), X.data(), 9);
   EXPECT_EQ(X, Xs);
   half->compact();
-  EXPECT_NEAR(half->factor_bytes() / single->factor_bytes(), 0.5, 0.1);
+  // Half the bytes per entry, and only the lower trapezoid of each supernode kept.
+  const double bytes_ratio = half->factor_bytes() / single->factor_bytes();
+  std::printf("binary16 factor bytes / float factor bytes: %.3f\n", bytes_ratio);
+  EXPECT_LT(bytes_ratio, 0.5);
+  EXPECT_GT(bytes_ratio, 0.3);
   half->solve(B.data(), X.data(), 9);
   for (int c = 0; c < 9; ++c) half->solve(B.col(c).data(), Xc.col(c).data(), 1);
   const double err_single = relative_error(Xs, X_ref), err = relative_error(X, X_ref);
