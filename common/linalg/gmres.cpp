@@ -8,16 +8,20 @@ namespace fe2 {
 namespace {
 
 /// w = Σ y_j Az_j, when that stands for A x = A Σ y_j z_j as well as a product would:
-/// its rounding is ≈ j·eps·Σ|y_j|‖Az_j‖, within a few eps of ‖w‖ unless the terms cancel.
-/// Where they cancel by more than half (false returned) the caller forms A x itself.
-bool combine_products(const std::vector<Vec>& Az, const Vec& y, Vec& w) {
+/// its rounding is ≈ j·eps·Σ|y_j|‖Az_j‖ plus A times x's own, ≈ j·eps·Σ|y_j|‖z_j‖, within
+/// a few eps of ‖w‖ and ‖x‖ unless the terms cancel. Where either sum cancels by more
+/// than half (false returned), e.g. along directions A nearly annihilates, the caller
+/// forms A x itself.
+bool combine_products(const std::vector<Vec>& Az, const std::vector<Vec>& Z, const Vec& y,
+                      const Vec& x, Vec& w) {
   w = y[0] * Az[0];
-  double bound = std::abs(y[0]) * Az[0].norm();
+  double w_terms = std::abs(y[0]) * Az[0].norm(), x_terms = std::abs(y[0]) * Z[0].norm();
   for (Eigen::Index i = 1; i < y.size(); ++i) {
     w += y[i] * Az[i];
-    bound += std::abs(y[i]) * Az[i].norm();
+    w_terms += std::abs(y[i]) * Az[i].norm();
+    x_terms += std::abs(y[i]) * Z[i].norm();
   }
-  return w.norm() >= 0.5 * bound;
+  return w.norm() >= 0.5 * w_terms && x.norm() >= 0.5 * x_terms;
 }
 
 }  // namespace
@@ -97,9 +101,11 @@ GmresResult gmres(const LinearOp& A, const LinearOp& Minv, const Vec& b, Vec& x,
     // x += M⁻¹ V y = Z y, with H y = g (upper triangular j x j)
     const Vec y = Hm.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
     for (int i = 0; i < j; ++i) x += y[i] * Z[i];
-    if (!(first_cycle && from_zero && j >= 1 && j <= kKeptProducts && combine_products(Az, y, w)))
+    if (!(first_cycle && from_zero && j >= 1 && j <= kKeptProducts &&
+          combine_products(Az, Z, y, x, w)))
       A(x, w);
     first_cycle = false;
+    Az = {};
     r = b - w;
     beta = r.norm();
     res.residual = beta;

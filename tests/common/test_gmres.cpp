@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 namespace fe2 {
@@ -64,7 +65,8 @@ TEST(Gmres, OneIterationFromZeroAppliesTheOperatorOnce) {
 // one product per iteration and none after, and still the true residual (solve_and_check
 // compares it with b − A x recomputed).
 TEST(Gmres, AFewIterationsFromZeroApplyTheOperatorOncePerIteration) {
-  for (const double perturbation : {1e-4, 1e-3, 3e-3}) {
+  int fewest = 1000, most = 0;
+  for (const double perturbation : {1e-5, 1e-4, 1e-3}) {
     Problem p = spd_problem(40);
     std::srand(11);
     const Eigen::MatrixXd E = Eigen::MatrixXd::Random(40, 40);
@@ -76,7 +78,12 @@ TEST(Gmres, AFewIterationsFromZeroApplyTheOperatorOncePerIteration) {
     EXPECT_GE(res.iterations, 2) << perturbation;
     EXPECT_LE(res.iterations, 4) << perturbation;
     EXPECT_EQ(p.applications, res.iterations) << perturbation;
+    fewest = std::min(fewest, res.iterations);
+    most = std::max(most, res.iterations);
   }
+  // Every count of kept products is used, up to all four.
+  EXPECT_LE(fewest, 2);
+  EXPECT_EQ(most, 4);
 }
 
 // Kept products whose combination cancels carry their rounding into the residual; there
@@ -87,6 +94,24 @@ TEST(Gmres, CancellingKeptProductsAreReplacedByAProduct) {
   p.A = Eigen::MatrixXd::Identity(2, 2);
   p.b = Vec::Ones(2);
   const LinearOp M = [](const Vec& x, Vec& y) { y = x; y[0] *= 1e4; };
+  Vec x = Vec::Zero(2);
+  const GmresResult res = solve_and_check(p, M, x);
+  EXPECT_EQ(res.iterations, 2);
+  EXPECT_EQ(p.applications, 3);
+}
+
+// The same where x's terms cancel but A z_j's do not: along a direction A shrinks
+// (A = diag(1, 1/64)), x = y₀z₀ + y₁z₁ with ‖x‖ ≈ 0.2 Σ|y_j|‖z_j‖ while
+// ‖Σ y_j A z_j‖ ≈ 0.67 Σ|y_j|‖A z_j‖. (Found by a search over 2×2 problems.)
+TEST(Gmres, KeptProductsOfCancellingDirectionsAreReplacedByAProduct) {
+  Problem p;
+  p.A = Eigen::MatrixXd::Identity(2, 2);
+  p.A(1, 1) = 1.0 / 64;
+  p.b = Vec(2);
+  p.b << -1.6, 0.28;
+  Eigen::MatrixXd Mm(2, 2);
+  Mm << 1.5, 7700.0, 8.6e5, -4e5;
+  const LinearOp M = [Mm](const Vec& x, Vec& y) { y = Mm * x; };
   Vec x = Vec::Zero(2);
   const GmresResult res = solve_and_check(p, M, x);
   EXPECT_EQ(res.iterations, 2);
