@@ -354,8 +354,8 @@ void FloatCholeskyFactor::keep_in_half() {
   const int ns = nsuper();
   half_start_.assign(ns + 1, 0);
   for (int s = 0; s < ns; ++s) {
-    const size_t nscol = super()[s + 1] - super()[s], nsrow = pi()[s + 1] - pi()[s];
-    half_start_[s + 1] = half_start_[s] + nscol * nsrow - nscol * (nscol - 1) / 2;
+    const HalfSupernode h = half_supernode(s);
+    half_start_[s + 1] = half_start_[s] + h.column_start(h.nscol);  // past its last column
   }
   Lh_.allocate(half_start_[ns]);
   for (int s = 0; s < ns; ++s) {

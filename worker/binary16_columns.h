@@ -11,7 +11,7 @@
 
 namespace fe2 {
 
-/// Rounds to nearest (ties to even); |values| above 65504 become ±∞.
+/// Rounds to nearest (ties to even); |values| from 65520 on become ±∞ (65504 is the largest).
 void floats_to_half(const float* from, uint16_t* to, size_t count);
 inline float half_to_float(uint16_t bits) {  // inline: the solves' triangles call it per entry
   _Float16 h;
