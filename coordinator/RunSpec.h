@@ -12,8 +12,8 @@
 #include "common/materials/Material.h"
 #include "common/mesh/TetMesh.h"
 #include "common/spec/SpecNode.h"
-#include "coordinator/FarmOptions.h"
-#include "coordinator/MacroSolverOptions.h"
+#include "coordinator/farm/FarmOptions.h"
+#include "coordinator/macro/MacroSolverOptions.h"
 #include "worker/MicroModel.h"
 #include "worker/point_models.h"
 

@@ -1,6 +1,8 @@
 #include "coordinator/Simulation.h"
 
-#include "coordinator/CavityPressureTerm.h"
+#include "coordinator/macro/CavityPressureTerm.h"
+#include "coordinator/macro/field_residuals.h"
+#include "coordinator/macro/gather.h"
 
 #include "common/cpu_timer.h"
 #include "common/fem/lagrange_tet.h"
@@ -10,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -36,19 +39,13 @@ std::vector<bool> collective_models(const RunSpec& spec) {
   return c;
 }
 
-Eigen::VectorXd gather(const Eigen::VectorXd& x, const std::vector<int>& dofs) {
-  Eigen::VectorXd v(dofs.size());
-  for (size_t k = 0; k < dofs.size(); ++k) v[k] = x[dofs[k]];
-  return v;
-}
-
 }  // namespace
 
-Simulation::Simulation(const RunSpec& spec, PointEvaluator& points)
-    : Simulation(spec, points, proto::Group(), all_elements(spec.mesh)) {}
+Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const MacroExtension& extension)
+    : Simulation(spec, points, proto::Group(), all_elements(spec.mesh), extension) {}
 
-Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
-                       const proto::Group& coordinators, std::vector<int> owned_elements)
+Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
+                       std::vector<int> owned_elements, const MacroExtension& extension)
     : spec_(spec),
       evaluator_(points),
       self_(coordinators.valid() ? MPI_COMM_NULL : MPI_COMM_SELF),
@@ -56,8 +53,10 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
       owned_elements_(std::move(owned_elements)),
       points_(spec.mesh, spec.formulation.quadrature_degree),
       owned_points_(points_.points_of(owned_elements_)),
-      system_(spec, spec.formulation.mixed),
+      system_(make_macro_system(spec, extension)),
+      time_integration_(spec.beta, spec.gamma),
       macro_solver_(group_, system_.num_free(), spec.macro_solver),
+      displacement_field_(system_.field("displacement")),
       collective_(spec.model_of_points(), collective_models(spec)) {
   FE2_CHECK(points_.points_per_element() == spec.points_per_element,
             "{} points per element, the spec counted {}", points_.points_per_element(),
@@ -78,28 +77,20 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points,
     if (spec.activation) activation_time_[k] = spec.activation->at(points_[k].element, bary);
   }
   for (int k : owned_points_)
-    point_dofs_.push_back(displacement_dofs(spec.mesh.element_nodes(points_[k].element)));
+    point_dofs_.push_back(displacement_field_.node_dofs(spec.mesh.element_nodes(points_[k].element)));
 
-  // The scene's terms; an effect that is off builds nothing.
+  // The scene's terms (macro/macro_scene.h); an effect that is off builds nothing.
   responses_.resize(owned_points_.size());
-  terms_.push_back(std::make_unique<PointStressTerm>(spec.mesh, points_, owned_elements_, responses_));
-  if (spec.dynamic)
-    terms_.push_back(std::make_unique<InertiaTerm>(spec.mesh, owned_elements_, spec.density));
-  if (!spec.pressure.empty())
-    terms_.push_back(std::make_unique<FollowerPressureTerm>(spec, group_.rank(), group_.size()));
-  if (spec.circulation) {
-    auto term = std::make_unique<CavityPressureTerm>(spec, group_.rank() == 0);
-    cavity_term_ = term.get();
-    terms_.push_back(std::move(term));
-  }
-  if (spec.formulation.mixed) {
-    auto term = std::make_unique<IncompressibilityTerm>(spec.mesh, points_, owned_elements_, spec.formulation);
-    incompressibility_ = term.get();
-    terms_.push_back(std::move(term));
-  }
+  terms_ = scene_terms(spec, points_, owned_elements_, responses_, group_.rank(), group_.size());
+  for (const auto& term : terms_)
+    if (auto* cavities = dynamic_cast<CavityPressureTerm*>(term.get())) cavity_term_ = cavities;
 
   const int n = system_.num_dofs();
-  x_ = v_ = a_ = x_n_ = v_n_ = a_n_ = Eigen::VectorXd::Zero(n);
+  x_ = v_ = a_ = Eigen::VectorXd::Zero(n);
+  system_.constraints().distribute(x_);  // ties with an offset hold from the start
+  x_n_ = x_;
+  v_n_ = v_;
+  a_n_ = a_;
   Zbar_.assign(owned_points_.size(), Vec9::Zero());
   Zbar_n_ = Zbar_;
   jobs_.resize(owned_points_.size());
@@ -113,7 +104,19 @@ void Simulation::add_term(std::unique_ptr<MacroTerm> term) {
 
 Vec9 Simulation::displacement_gradient(int point) const {
   const MacroPoint& p = points_[point];
-  return p.B * gather(x_, displacement_dofs(spec_.mesh.element_nodes(p.element)));
+  return p.B * gather(x_, displacement_field_.node_dofs(spec_.mesh.element_nodes(p.element)));
+}
+
+Eigen::VectorXd Simulation::field_values(const std::string& name) const {
+  const Field& f = system_.field(name);
+  return x_.segment(f.offset(), f.size());
+}
+
+const std::vector<double>& StepRecord::residual(const std::string& field) const {
+  static const std::vector<double> none;
+  for (const auto& r : residuals)
+    if (r.field == field) return r.values;
+  return none;
 }
 
 Vec3 Simulation::deformed_position(const Vec3& X) const {
@@ -123,7 +126,7 @@ Vec3 Simulation::deformed_position(const Vec3& X) const {
   tet_shape(spec_.mesh.order(), Vec4(p.bary[0], p.bary[1], p.bary[2], p.bary[3]), N, dN);
   const std::vector<int> nodes = spec_.mesh.element_nodes(p.tet);
   Vec3 x = X;
-  for (size_t a = 0; a < nodes.size(); ++a) x += N[a] * x_.segment<3>(3 * nodes[a]);
+  for (size_t a = 0; a < nodes.size(); ++a) x += N[a] * x_.segment<3>(displacement_field_.node_dof(nodes[a]));
   return x;
 }
 
@@ -135,19 +138,21 @@ std::vector<double> Simulation::cavity_volumes() const {
 }
 
 std::vector<double> Simulation::nodal_pressure() const {
-  if (!system_.has_pressure()) return {};
+  const Field* field = system_.fields().find("pressure");
+  if (!field) return {};
   const TetMesh& m = spec_.mesh;
   std::vector<double> p(m.num_nodes(), 0.0);
-  for (int j = 0; j < system_.num_vertex_pressures(); ++j)
-    p[system_.vertex_of_pressure(j)] = x_[system_.pressure_offset() + j];
+  for (int a : field->nodes()) p[a] = x_[field->node_dof(a)];
   for (const auto& [edge, node] : m.edge_nodes) p[node] = 0.5 * (p[edge.first] + p[edge.second]);
   return p;
 }
 
 std::vector<double> Simulation::element_pressure() const {
   std::vector<double> p(spec_.mesh.num_tets(), 0.0);
+  const Field* field = system_.fields().find("pressure");
+  if (!field) return p;
   for (int e = 0; e < spec_.mesh.num_tets(); ++e)
-    if (system_.element_pressure_dof(e) >= 0) p[e] = x_[system_.element_pressure_dof(e)];
+    if (field->element_dof(e) >= 0) p[e] = x_[field->element_dof(e)];
   return p;
 }
 
@@ -184,7 +189,9 @@ PointFields Simulation::gather_point_fields() const {
 }
 
 MacroState Simulation::state(double t_new, double dt) const {
-  return MacroState{x_, v_, a_, t_new, dt, spec_.dynamic ? 1.0 / (spec_.beta * dt * dt) : 0.0};
+  MacroState s{x_, v_, a_, t_new, dt, {}};
+  for (const Field& f : system_.fields()) s.rates.push_back(time_integration_.coefficients(f, dt));
+  return s;
 }
 
 Eigen::VectorXd Simulation::dirichlet_increment(double t_new) const {
@@ -195,26 +202,24 @@ Eigen::VectorXd Simulation::dirichlet_increment(double t_new) const {
   return du_D;
 }
 
-// --- predict: Newmark a, v of the trial ū (quasi-static: nothing to predict)
+// --- predict: each field's rates of the trial x, by its scheme
 void Simulation::predict(double dt) {
-  if (!spec_.dynamic) return;
-  const double c = 1.0 / (spec_.beta * dt * dt);
-  a_ = c * (x_ - x_n_ - dt * v_n_) - (0.5 / spec_.beta - 1.0) * a_n_;
-  v_ = v_n_ + dt * ((1.0 - spec_.gamma) * a_n_ + spec_.gamma * a_);
+  for (const Field& f : system_.fields()) time_integration_.rates(f, dt, x_, x_n_, v_n_, a_n_, v_, a_);
 }
 
 // --- (a)–(e): the points answer, agreed valid on every coordinator
 void Simulation::evaluate_points(int step, int iteration, double t_new, double dt) {
-  // c = ∂Ż̄/∂Z̄: Newmark's v depends on ū through γ/(βΔt); quasi-static rates are
-  // backward differences. The points' tangents take ∂Π/∂Ż with this weight.
-  const double Zdot_coefficient = spec_.dynamic ? spec_.gamma / (spec_.beta * dt) : 1.0 / dt;
+  // c = ∂Ż̄/∂Z̄: the displacement's scheme (Newmark: γ/(βΔt)); without a field rate the
+  // points' rates are backward differences of Z̄. Their tangents take ∂Π/∂Ż with this weight.
+  const bool u_has_rate = displacement_field_.decl().time != TimeScheme::none;
+  const double Zdot_coefficient = u_has_rate ? time_integration_.coefficients(displacement_field_, dt).dv_dx : 1.0 / dt;
   std::string why;
   try {
     for (size_t s = 0; s < owned_points_.size(); ++s) {
       const int k = owned_points_[s];
       const MacroPoint& p = points_[k];
       const Vec9 Zbar = p.B * gather(x_, point_dofs_[s]);
-      const Vec9 Zdot = spec_.dynamic ? Vec9(p.B * gather(v_, point_dofs_[s])) : Vec9((Zbar - Zbar_n_[s]) / dt);
+      const Vec9 Zdot = u_has_rate ? Vec9(p.B * gather(v_, point_dofs_[s])) : Vec9((Zbar - Zbar_n_[s]) / dt);
       // Non-finite first: NaN compares false, so it would pass as "inverted" below.
       if (!Zbar.allFinite() || !Zdot.allFinite())
         throw NumericalError(fmt::format("non-finite macro displacement gradient Z̄ or rate Ż̄ at "
@@ -287,31 +292,22 @@ Simulation::Residual Simulation::converge(double t_new) {
   Residual res;
   for (const auto& r : results_) res.micro = std::max(res.micro, proto::relative_residual(r));
   res.micro = group_.allreduce_max(res.micro);
-  const int nu = system_.displacement_dofs();
-  double r2 = 0.0;
-  for (int dof = 0; dof < nu; ++dof)
-    if (system_.eq(dof) >= 0) r2 += std::pow(f_ext[dof] - f_int[dof], 2);
-  const double F_ref = std::max(f_int.head(nu).norm(), f_ext.head(nu).norm());
-  res.displacement = F_ref > 0 ? std::sqrt(r2) / F_ref : std::sqrt(r2);
-  if (system_.has_pressure()) {
-    // R_p has the units of volume: relative to the nodal volumes ∫N_p, it is the
-    // volumetric strain J̄ − 1 (+ p/κ) the pressure has not yet removed.
-    const auto Rp = (f_int - f_ext).segment(system_.pressure_offset(), system_.num_pressure());
-    res.volume = Rp.norm() / pressure_volumes_.norm();
-  }
-  for (int c = 0; c < system_.num_cavities(); ++c) {
-    // R_c has the units of volume: relative to the cavity's unloaded volume.
-    const int dof = system_.cavity_dof(c);
-    res.cavity = std::max(res.cavity, std::abs(f_int[dof] - f_ext[dof]) / cavity_term_->reference_volumes()[c]);
-  }
-  if (!std::isfinite(res.displacement) || !std::isfinite(res.volume) || !std::isfinite(res.cavity))
-    throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g}", t_new));
+  res.fields = field_residual_norms(system_, f_int, f_ext, residual_scales_);
+  for (double v : res.fields)
+    if (!std::isfinite(v)) throw NumericalError(fmt::format("non-finite macro residual at t = {:.6g} ({})", t_new, describe(res)));
   return res;
 }
 
+std::string Simulation::describe(const Residual& r) const {
+  std::string text;
+  for (const Field& f : system_.fields()) text += fmt::format("{} {:.3e}, ", f.name(), r.fields[f.id()]);
+  return text + fmt::format("micro {:.3e}", r.micro);
+}
+
 double Simulation::convergence_measure(const Residual& r) const {
-  const double macro = std::max({r.displacement, r.volume, r.cavity}) / spec_.newton_rtol;
-  return std::max(macro, r.micro / spec_.micro_rtol);
+  double measure = r.micro / spec_.micro_rtol;
+  for (const Field& f : system_.fields()) measure = std::max(measure, r.fields[f.id()] / f.decl().rtol);
+  return measure;
 }
 
 // --- (h): S̄ Δx = −R̃ on the coordinators (summed on the MUMPS host), Δx to all
@@ -355,16 +351,21 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     values_.assign(system_.rows().size(), 0.0);
     macro_solver_.set_pattern(system_.rows(), system_.cols());
     assembly_ = std::make_unique<MacroAssembly>(system_, values_);
-    if (incompressibility_) {
-      pressure_volumes_ = incompressibility_->pressure_volumes();
-      group_.allreduce_sum(pressure_volumes_.data(), static_cast<int>(pressure_volumes_.size()));
+    for (const Field& f : system_.fields()) {
+      Eigen::VectorXd scale;
+      if (f.decl().norm != ResidualNorm::relative_to_load) {
+        scale = Eigen::VectorXd::Zero(f.size());
+        for (const auto& term : terms_) term->add_residual_scale(f, scale);
+        group_.allreduce_sum(scale.data(), static_cast<int>(scale.size()));
+      }
+      residual_scales_.push_back(std::move(scale));
     }
     pattern_set_ = true;
   }
   const Eigen::VectorXd du_D = dirichlet_increment(t_new);
   const bool has_du_D = du_D.squaredNorm() > 0.0;
   rec.residuals.clear();
-  rec.volume_residuals.clear();
+  for (const Field& f : system_.fields()) rec.residuals.push_back({f.name(), {}});
   rec.micro_residuals.clear();
   force_refresh_ = false;
   double previous_measure = std::numeric_limits<double>::infinity();
@@ -387,32 +388,10 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
         assemble(t_new, dt, first ? &du_D : nullptr);
       }
       const Residual res = converge(t_new);
-      rec.residuals.push_back(res.displacement);
-      if (system_.has_pressure()) rec.volume_residuals.push_back(res.volume);
+      for (size_t f = 0; f < res.fields.size(); ++f) rec.residuals[f].values.push_back(res.fields[f]);
       rec.micro_residuals.push_back(res.micro);
-      // GMRES iterations, refreshes, unit CPU seconds; farm.factor_memory_budget: factors
-      // dropped, rebuilt, and the CPU seconds of those rebuilds.
-      double work[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-      for (const auto& r : results_) {
-        work[0] += r.gmres_iterations;
-        work[1] += r.kind == proto::Refresh::refresh;
-        work[2] += r.cpu_seconds;
-        work[3] += r.factor_evictions;
-        work[4] += r.factor_rebuilt;
-        if (r.factor_rebuilt) work[5] += r.cpu_refresh;
-      }
-      group_.allreduce_sum(work, 6);
-      rec.gmres_iterations += static_cast<int>(work[0]);
-      rec.refreshes += static_cast<int>(work[1]);
-      rec.micro_cpu_seconds += work[2];
-      rec.factor_evictions += static_cast<int>(work[3]);
-      rec.factor_rebuilds += static_cast<int>(work[4]);
-      rec.factor_rebuild_cpu_seconds += work[5];
-      spdlog::debug("step {} t={:.6g} it {}: |R_u|/F = {:.3e}{}, max |r|/r_ref = {:.3e}", step, t_new,
-                    it, res.displacement,
-                    system_.has_pressure() ? fmt::format(", |R_p|/V = {:.3e}", res.volume) : "",
-                    res.micro);
-      if (system_.num_cavities() > 0) rec.cavity_residuals.push_back(res.cavity);
+      account_work(rec);
+      spdlog::debug("step {} t={:.6g} it {}: {}", step, t_new, it, describe(res));
       const double measure = convergence_measure(res);
       converged = !first && measure <= 1.0;
       // Kept factors make the coupled Newton linear (stale χ in Eq. (11) and A_hom in
@@ -453,6 +432,27 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
   }
   rec.iterations += spec_.newton_max_iterations;
   return false;
+}
+
+void Simulation::account_work(StepRecord& rec) const {
+  // farm.factor_memory_budget: factors dropped, rebuilt, and the CPU seconds of those rebuilds.
+  enum Counter { gmres, refreshes, cpu, evictions, rebuilds, rebuild_cpu, kCounters };
+  std::array<double, kCounters> work{};
+  for (const auto& r : results_) {
+    work[gmres] += r.gmres_iterations;
+    work[refreshes] += r.kind == proto::Refresh::refresh;
+    work[cpu] += r.cpu_seconds;
+    work[evictions] += r.factor_evictions;
+    work[rebuilds] += r.factor_rebuilt;
+    if (r.factor_rebuilt) work[rebuild_cpu] += r.cpu_refresh;
+  }
+  group_.allreduce_sum(work.data(), kCounters);
+  rec.gmres_iterations += static_cast<int>(work[gmres]);
+  rec.refreshes += static_cast<int>(work[refreshes]);
+  rec.micro_cpu_seconds += work[cpu];
+  rec.factor_evictions += static_cast<int>(work[evictions]);
+  rec.factor_rebuilds += static_cast<int>(work[rebuilds]);
+  rec.factor_rebuild_cpu_seconds += work[rebuild_cpu];
 }
 
 void Simulation::commit(double t_new, double dt) {
@@ -554,14 +554,13 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
       bool ok = false;
       try {
         ok = newton(step, t_new, t_new - t_n_, rec);
-        if (!ok)
-          why = fmt::format("Newton did not converge in {} iterations (last |R|/F = {:.3e}{}, "
-                            "max unit |r|/r_ref = {:.3e})",
-                            spec_.newton_max_iterations, rec.residuals.back(),
-                            rec.volume_residuals.empty()
-                                ? ""
-                                : fmt::format(", |R_p|/V = {:.3e}", rec.volume_residuals.back()),
-                            rec.micro_residuals.back());
+        if (!ok) {
+          std::string last;
+          for (const auto& r : rec.residuals) last += fmt::format("{} {:.3e}, ", r.field, r.values.back());
+          why = fmt::format("Newton did not converge in {} iterations (last residuals: {}max unit |r|/r_ref "
+                            "{:.3e})",
+                            spec_.newton_max_iterations, last, rec.micro_residuals.back());
+        }
       } catch (const SingularMatrixError& e) {
         if (e.at_committed_state) {
           rollback();
@@ -597,7 +596,8 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     rec.cavity_volumes = cavity_volumes();
     for (const auto& probe : spec_.probes) rec.probes.push_back(deformed_position(probe.second));
     if (cavity_term_) {
-      for (int c = 0; c < system_.num_cavities(); ++c) rec.cavity_pressures.push_back(x_[system_.cavity_dof(c)]);
+      const Field& pc = system_.field("cavity_pressure");
+      for (int c = 0; c < pc.size(); ++c) rec.cavity_pressures.push_back(x_[pc.global_dof(c)]);
       rec.circulation = cavity_term_->flows();  // valid on the coordinator that assembles it
     }
     for (const auto& ps : spec_.pressure) rec.load_pressures.push_back(ps.value * ramp_factor(ps.ramp, t_n_, spec_.t_end));

@@ -1,27 +1,29 @@
 #pragma once
 // The macro problem and its Newton driver (paper Fig. 5), in named phases:
-//   predict          Newmark rates of the trial ū; the prescribed increment Δū_D
+//   predict          each field's rates of the trial x (macro/TimeIntegration.h); the
+//                    prescribed increment Δx_D
 //   evaluate points  (a) Z̄_k = B̄_k ū at every integration point, rotated into the
 //                    point's frame (Z̄_μ = R Z̄), with Ż̄, t, Δt; (b–e) the points answer
 //                    (𝔸_hom, P̃, P̄)                               [PointEvaluator]
-//   assemble         (g) every macro term (point stress, inertia, follower pressure,
-//                    incompressibility) into S̄ and the residual    [MacroTerm]
-//   converge         (i) the true residual (with P̄) per field, and every unit's ‖r‖
+//   assemble         (g) every macro term of the scene into S̄ and the residual
+//                    [MacroTerm, macro/macro_scene.h]
+//   converge         (i) the true residual (with P̄) of every field, each by its own
+//                    norm and tolerance [macro/field_residuals.h], and every unit's ‖r‖
 //   solve            (h) S̄ Δx = −R̃ on the coordinators (MUMPS)
 //   update           (j) x += Δx
 // Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
 // NaN, inverted element, iteration cap) is rolled back and cut in half, up to
 // newton.max_cutbacks times; then the run stops, saying where and why.
-#include "coordinator/CollectiveRefresh.h"
+#include "coordinator/farm/CollectiveRefresh.h"
 #include "coordinator/MacroPoints.h"
-#include "coordinator/MacroSystem.h"
-#include "coordinator/MacroTerm.h"
-#include "coordinator/MacroSolver.h"
+#include "coordinator/macro/MacroSystem.h"
+#include "coordinator/macro/MacroTerm.h"
+#include "coordinator/macro/MacroSolver.h"
 #include "coordinator/PointEvaluator.h"
 #include "common/circulation/Circulation.h"
 #include "coordinator/RunSpec.h"
-#include "coordinator/Trace.h"
-#include "coordinator/macro_terms.h"
+#include "coordinator/farm/Trace.h"
+#include "coordinator/macro/macro_scene.h"
 #include "proto/Transport.h"
 
 #include <functional>
@@ -39,14 +41,21 @@ struct PointFields {
   std::vector<double> active_tension; ///< T_a per point (0 where nothing contracts), Pa
 };
 
+struct FieldResidualHistory {
+  std::string field;
+  std::vector<double> values;
+};
+
 struct StepRecord {
   int step = 0;
   double time = 0.0;
   int iterations = 0;                 ///< Newton iterations of the accepted (sub)steps
   int cutbacks = 0;
-  std::vector<double> residuals;      ///< macro ‖R_u,free‖ / F_ref per iteration (last substep)
-  std::vector<double> volume_residuals;///< mixed: ‖R_p‖ / ‖∫N_p‖ per iteration (last substep)
+  /// Per macro field (table order): its residual norm per iteration (last substep).
+  std::vector<FieldResidualHistory> residuals;
   std::vector<double> micro_residuals;///< max_k ‖r_k‖ / r_ref,k per iteration (last substep)
+  /// The residual history of `field` (empty if the scene has no such field).
+  const std::vector<double>& residual(const std::string& field) const;
   int gmres_iterations = 0;
   int refreshes = 0;
   int factor_evictions = 0;           ///< farm.factor_memory_budget: factors dropped ...
@@ -59,7 +68,6 @@ struct StepRecord {
   std::vector<double> cavity_volumes;   ///< per spec.cavities, at the end of the step
   std::vector<double> load_pressures;   ///< per spec.pressure, at the end of the step
   std::vector<Vec3> probes;             ///< per spec.probes, deformed position at the end of the step
-  std::vector<double> cavity_residuals; ///< coupled: max_c |R_c| / V_c,ref per iteration (last substep)
   std::vector<double> cavity_pressures; ///< coupled: p_c per circulation cavity, Pa
   CavityFlows circulation;              ///< coupled: flows, valves, phases (on the assembling coordinator)
 };
@@ -78,11 +86,11 @@ struct RunResult {
 class Simulation {
  public:
   /// One process owning every element. `points` is lent.
-  Simulation(const RunSpec& spec, PointEvaluator& points);
+  Simulation(const RunSpec& spec, PointEvaluator& points, const MacroExtension& extension = {});
   /// A coordinator of a farm owning `owned_elements` (ascending) and their integration
   /// points; `coordinators` is lent. @note Collective on the coordinator group (MUMPS).
   Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
-             std::vector<int> owned_elements);
+             std::vector<int> owned_elements, const MacroExtension& extension = {});
 
   /// Called after every accepted step (for output); may be empty.
   using StepHook = std::function<void(const StepRecord&)>;
@@ -116,10 +124,12 @@ class Simulation {
   /// Factorizations and kept-factor solves of the macro system so far.
   const MacroSolver::Stats& macro_solver_stats() const { return macro_solver_.stats(); }
   const MacroPoints& points() const { return points_; }
-  /// Every DOF: ū (node-major) then p.
+  /// Every DOF, field by field (system().fields()).
   const Eigen::VectorXd& state() const { return x_; }
+  /// The block of the field named `name`.
+  Eigen::VectorXd field_values(const std::string& name) const;
   /// ū alone (3 per mesh node).
-  Eigen::VectorXd displacement() const { return x_.head(system_.displacement_dofs()); }
+  Eigen::VectorXd displacement() const { return field_values("displacement"); }
   /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
   /// ends, which is the P1 field there); empty without a pressure field.
   std::vector<double> nodal_pressure() const;
@@ -153,10 +163,14 @@ class Simulation {
   void evaluate_points(int step, int iteration, double t_new, double dt);
   void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
   struct Residual {
-    double displacement = 0.0, volume = 0.0, micro = 0.0;
-    double cavity = 0.0;  ///< max_c |R_c| / V_c,ref (circulation-coupled cavities)
+    std::vector<double> fields;  ///< per field (table order): its norm
+    double micro = 0.0;          ///< max_k ‖r_k‖ / r_ref,k
   };
   Residual converge(double t_new);
+  /// "displacement 1.2e-3, pressure 4.0e-9, micro 2.1e-10": for logs and errors.
+  std::string describe(const Residual& r) const;
+  /// Sums the units' work counters of the iteration into `rec`. @note Collective.
+  void account_work(StepRecord& rec) const;
   /// max over the residuals of each one's ratio to its tolerance: converged iff ≤ 1.
   double convergence_measure(const Residual& r) const;
   void solve(int iteration);
@@ -181,17 +195,18 @@ class Simulation {
   std::vector<int> owned_points_;      ///< this coordinator's points (= units), ascending
   MacroSystem system_;
   std::vector<std::unique_ptr<MacroTerm>> terms_;
-  IncompressibilityTerm* incompressibility_ = nullptr;
-  Eigen::VectorXd pressure_volumes_;   ///< ∫N_p over all elements (mixed)
+  TimeIntegration time_integration_;
+  std::vector<Eigen::VectorXd> residual_scales_;  ///< per field (MacroTerm::add_residual_scale), summed
   MacroSolver macro_solver_;
   bool pattern_set_ = false;
   std::vector<Mat3> Q_;                ///< frame per point
   std::vector<Mat9> R_;
   std::vector<double> activation_time_;  ///< t_act per point (s)
   CavityPressureTerm* cavity_term_ = nullptr;  ///< when a circulation is coupled
+  const Field& displacement_field_;
   std::vector<std::vector<int>> point_dofs_;  ///< per owned point: its element's ū DOFs
   std::function<double(int, double)> dirichlet_value_;
-  // Macro state: current and committed (every DOF; v, a used on the ū block).
+  // Macro state: current and committed (every DOF; v, a of the fields with a rate).
   Eigen::VectorXd x_, v_, a_, x_n_, v_n_, a_n_;
   std::vector<Vec9> Zbar_, Zbar_n_;    ///< per owned point: current and committed Z̄
   std::vector<PointResponse> responses_;

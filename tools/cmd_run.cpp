@@ -3,12 +3,12 @@
 #include "common/circulation/circulation_run_spec.h"
 #include "common/cpu_timer.h"
 #include "common/io/atomic_file.h"
-#include "coordinator/Checkpoint.h"
-#include "coordinator/FarmEvaluator.h"
-#include "coordinator/FarmLayout.h"
-#include "coordinator/RunOutput.h"
+#include "coordinator/output/Checkpoint.h"
+#include "coordinator/farm/FarmEvaluator.h"
+#include "coordinator/farm/FarmLayout.h"
+#include "coordinator/output/RunOutput.h"
 #include "coordinator/RunSpec.h"
-#include "coordinator/UnitOutput.h"
+#include "coordinator/output/UnitOutput.h"
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
@@ -324,9 +324,11 @@ int run(const RunOptions& o) {
         [&](const StepRecord& r) {
           const double elapsed = wall_seconds() - t0;
           const double remaining = elapsed / (r.step + 1) * (spec.steps - r.step - 1);
-          spdlog::info("step {:4d}/{}  t = {:<10.5g} Newton {:2d}  |R|/F = {:.2e}  max |r|/r_ref = "
+          std::string residuals;  // each macro field's last norm, then the units'
+          for (const auto& f : r.residuals) residuals += fmt::format("{} {:.2e}  ", f.field, f.values.back());
+          spdlog::info("step {:4d}/{}  t = {:<10.5g} Newton {:2d}  |R| {}max |r|/r_ref = "
                        "{:.2e}  GMRES {:5d}  refreshes {:4d}{}  elapsed {}, remaining ~{}",
-                       r.step + 1, spec.steps, r.time, r.iterations, r.residuals.back(),
+                       r.step + 1, spec.steps, r.time, r.iterations, residuals,
                        r.micro_residuals.back(), r.gmres_iterations, r.refreshes,
                        r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "",
                        format_duration(elapsed), format_duration(remaining));

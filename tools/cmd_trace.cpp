@@ -1,8 +1,8 @@
 // `fe2heart trace summary|plot DIR` and `fe2heart farm-sim DIR`.
 #include "common/error.h"
 #include "common/spec/SpecNode.h"
-#include "coordinator/farm_sim.h"
-#include "coordinator/trace_analysis.h"
+#include "coordinator/farm/farm_sim.h"
+#include "coordinator/farm/trace_analysis.h"
 #include "tools/commands.h"
 
 #include <spdlog/spdlog.h>

@@ -1,6 +1,6 @@
 // fe2heart: multi-scale FE² heart simulation. See README.md and `fe2heart --help`.
 #include "common/error.h"
-#include "coordinator/FarmOptions.h"
+#include "coordinator/farm/FarmOptions.h"
 #include "tools/commands.h"
 #include "tools/stop_signal.h"
 

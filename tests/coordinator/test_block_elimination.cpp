@@ -38,7 +38,7 @@ void expect_schur_route_equals_direct_solve(const RunSpec& spec) {
 
   // The full system of Eq. (5), assembled explicitly, with each unit's blocks at its
   // state: A_wk = |e|K, C_k = |e| G R B̄, lower-left |e| (R B̄)ᵀ H, Ā = Σ|e| (RB̄)ᵀ⟨𝔸⟩ RB̄.
-  const MacroSystem sys(spec, false);
+  const MacroSystem sys = make_macro_system(spec);
   const MacroPoints pts(spec.mesh);
   std::vector<int> offset(nu + 1, 0);
   for (int k = 0; k < nu; ++k) offset[k + 1] = offset[k] + units[k]->model().num_dofs();

@@ -4,7 +4,7 @@
 // (filling, isovolumic contraction, ejection, isovolumic relaxation), the cavity volume
 // does not move while both valves are shut, and ejection pushes blood into the arteries.
 #include "common/circulation/beat_summary.h"
-#include "coordinator/CavityPressureTerm.h"
+#include "coordinator/macro/CavityPressureTerm.h"
 #include "tests/coordinator/scene_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -65,7 +65,7 @@ TEST(CirculationCoupling, LvBeatHasTheFourPhasesAndHoldsItsVolumeWhileTheValvesA
       // each (R_c follows the wall's error: 1.1e-5 → 3.5e-9 there, C ≈ 30).
       if (phase == "ejection") {
         std::vector<double> res;
-        for (size_t k = 0; k < h.residuals.size(); ++k) res.push_back(std::max(h.residuals[k], h.cavity_residuals[k]));
+        for (size_t k = 0; k < h.residual("displacement").size(); ++k) res.push_back(std::max(h.residual("displacement")[k], h.residual("cavity_pressure")[k]));
         for (double x : res) std::printf("%.2e ", x);
         std::printf("(step %zu, the aortic valve opens)\n", s);
         quadratic_checks += test::expect_quadratic_iterations(res, "valve opening, step " + std::to_string(s));
@@ -75,7 +75,7 @@ TEST(CirculationCoupling, LvBeatHasTheFourPhasesAndHoldsItsVolumeWhileTheValvesA
     if (phase.rfind("isovolumic", 0) == 0) worst_isovolumic = std::max(worst_isovolumic, std::abs(V - V_prev) / V_ref);
     V_min = std::min(V_min, V), V_max = std::max(V_max, V), p_max = std::max(p_max, h.cavity_pressures[0]);
     // The constraint converged with the rest: |R_c| / V_ref at the last iteration.
-    EXPECT_LE(h.cavity_residuals.back(), 1e-10) << "step " << s;
+    EXPECT_LE(h.residual("cavity_pressure").back(), 1e-10) << "step " << s;
   }
   std::printf("LV beat: phases");
   for (const auto& p : phases) std::printf(" → %s", p.c_str());

@@ -1,6 +1,6 @@
 // The collective refresh decision (coordinator/CollectiveRefresh.h): the ski rental over
 // the summed costs of a model's units, per model, with commit/rollback and checkpoints.
-#include "coordinator/CollectiveRefresh.h"
+#include "coordinator/farm/CollectiveRefresh.h"
 
 #include "common/error.h"
 

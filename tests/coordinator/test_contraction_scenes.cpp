@@ -65,7 +65,7 @@ TEST(ContractionScene, MuscleStripTwitchesWithQuadraticNewton) {
   EXPECT_LT(law.tip_x.back(), 0.3 * law.tip_x[systole]);  // and let go
   EXPECT_GT(systole, 5);                  // the twitch rises over tens of ms
 
-  const auto& res = law.result.history[systole].residuals;
+  const auto& res = law.result.history[systole].residual("displacement");
   for (double r : res) std::printf("  systole |R|/F = %.3e\n", r);
   const int asymptotic = test::expect_quadratic_iterations(res, "systole");
   EXPECT_GT(asymptotic, 0) << "no iteration in the asymptotic range at systole";
@@ -81,7 +81,7 @@ TEST(ContractionScene, NewmarkTwitchStaysQuadratic) {
   ASSERT_TRUE(dyn.result.converged) << dyn.result.error;
   const auto systole = std::min_element(dyn.tip_x.begin(), dyn.tip_x.end()) - dyn.tip_x.begin();
   EXPECT_GT(-dyn.tip_x[systole] / 6.0, 0.05);
-  const auto& res = dyn.result.history[systole].residuals;
+  const auto& res = dyn.result.history[systole].residual("displacement");
   const int asymptotic = test::expect_quadratic_iterations(res, "systole");
   EXPECT_GT(asymptotic, 0) << "no iteration in the asymptotic range at systole";
 }

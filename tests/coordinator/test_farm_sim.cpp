@@ -1,7 +1,7 @@
 // Issue #3, test 5, and the rebalancer: farm-sim predicts exactly the makespan the
 // scheduler's placement gives, on a synthetic trace with known costs.
-#include "coordinator/Rebalancer.h"
-#include "coordinator/farm_sim.h"
+#include "coordinator/farm/Rebalancer.h"
+#include "coordinator/farm/farm_sim.h"
 
 #include <gtest/gtest.h>
 

@@ -17,7 +17,7 @@ using test::run_scene;
 void expect_quadratic(const RunResult& r) {
   int checked = 0;
   for (const auto& step : r.history)
-    checked += test::expect_quadratic_iterations(step.residuals, "step " + std::to_string(step.step));
+    checked += test::expect_quadratic_iterations(step.residual("displacement"), "step " + std::to_string(step.step));
   EXPECT_GT(checked, 0) << "no iteration in the asymptotic range was seen";
 }
 
@@ -64,8 +64,8 @@ TEST(Fe2Scene, HomogeneousUnitsReproduceMacroLawThroughMixedP2) {
   for (const RunResult* r : {&fe2.result, &law.result}) {
     int checked = 0;
     for (const auto& step : r->history)
-      for (size_t k = 1; k + 1 < step.residuals.size(); ++k) {
-        const double a = step.residuals[k], b = step.residuals[k + 1];
+      for (size_t k = 1; k + 1 < step.residual("displacement").size(); ++k) {
+        const double a = step.residual("displacement")[k], b = step.residual("displacement")[k + 1];
         if (a > 1e-3 || b < 1e-13) continue;
         EXPECT_LT(b, 100.0 * a * a) << "step " << step.step << ": " << a << " -> " << b;
         ++checked;

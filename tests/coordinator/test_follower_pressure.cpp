@@ -1,5 +1,5 @@
 // The follower-pressure force and tangent on linear and quadratic (curved) triangles.
-#include "coordinator/follower_pressure.h"
+#include "common/fem/follower_pressure.h"
 
 #include <gtest/gtest.h>
 

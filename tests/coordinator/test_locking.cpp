@@ -72,7 +72,7 @@ class DeadTraction final : public MacroTerm {
   DeadTraction(const TetMesh& mesh, std::string face, Vec3 traction)
       : mesh_(mesh), face_(std::move(face)), t_(traction) {}
   std::string name() const override { return "dead traction"; }
-  void declare(MacroSystem&) override {
+  void declare(MacroSystem& system) override {
     Eigen::VectorXd N;
     Eigen::Matrix<double, 2, Eigen::Dynamic> dN;
     for (const auto& tri : mesh_.faces.at(face_)) {
@@ -85,7 +85,7 @@ class DeadTraction final : public MacroTerm {
         const double dA = q.weight * a1.cross(a2).norm();
         for (size_t a = 0; a < nodes.size(); ++a) f.segment<3>(3 * a) += dA * N[a] * t_;
       }
-      dofs_.push_back(displacement_dofs(nodes));
+      dofs_.push_back(system.field("displacement").node_dofs(nodes));
       f_.push_back(std::move(f));
     }
   }

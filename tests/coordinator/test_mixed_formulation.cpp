@@ -22,7 +22,9 @@ void expect_incompressibility_tangent_matches_fd(int order, const FormulationSpe
   j["mesh"]["order"] = order;
   RunSpec spec = read_run_spec(j, "");
   spec.formulation = f;
-  MacroSystem system(spec, true);
+  spec.formulation.mixed = true;
+  const MacroSystem system = make_macro_system(spec);
+  const Field& u = system.field("displacement");
   const MacroPoints points(spec.mesh);
   std::vector<int> all(spec.mesh.num_tets());
   for (int e = 0; e < spec.mesh.num_tets(); ++e) all[e] = e;
@@ -32,16 +34,16 @@ void expect_incompressibility_tangent_matches_fd(int order, const FormulationSpe
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   Eigen::VectorXd x(system.num_dofs());
   for (int k = 0; k < system.num_dofs(); ++k)
-    x[k] = k < system.displacement_dofs() ? 0.05 * uni(rng) : 200.0 * uni(rng);
+    x[k] = u.contains(k) ? 0.05 * uni(rng) : 200.0 * uni(rng);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(system.num_dofs());
   std::vector<double> values(system.rows().size());
   auto residual = [&](const Eigen::VectorXd& at) {
     MacroAssembly out(system, values);
-    term.assemble(MacroState{at, zero, zero, 1.0, 1.0, 0.0}, out);
+    term.assemble(MacroState{at, zero, zero, 1.0, 1.0, {}}, out);
     return Eigen::VectorXd(out.internal());
   };
   MacroAssembly out(system, values);
-  term.assemble(MacroState{x, zero, zero, 1.0, 1.0, 0.0}, out);
+  term.assemble(MacroState{x, zero, zero, 1.0, 1.0, {}}, out);
   // The assembled tangent as a dense matrix over free equations.
   const int n = system.num_free();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
@@ -49,7 +51,7 @@ void expect_incompressibility_tangent_matches_fd(int order, const FormulationSpe
   Eigen::MatrixXd fd = Eigen::MatrixXd::Zero(n, n);
   for (int dof = 0; dof < system.num_dofs(); ++dof) {
     if (system.eq(dof) < 0) continue;
-    const double h = dof < system.displacement_dofs() ? 1e-6 : 1e-3;
+    const double h = u.contains(dof) ? 1e-6 : 1e-3;
     Eigen::VectorXd xp = x, xm = x;
     xp[dof] += h;
     xm[dof] -= h;
@@ -143,11 +145,12 @@ class ManufacturedLoad final : public MacroTerm {
     for (int e = 0; e < mesh_.num_tets(); ++e) {
       const auto nodes = mesh_.element_nodes(e);
       const int n = static_cast<int>(nodes.size());
-      std::vector<int> dofs = displacement_dofs(nodes);
-      const bool enriched = m_.mixed && system.element_pressure_dof(e) >= 0;
-      if (m_.mixed)
-        for (int a = 0; a < 4; ++a) dofs.push_back(system.pressure_dof(mesh_.tets[e][a]));
-      if (enriched) dofs.push_back(system.element_pressure_dof(e));
+      std::vector<int> dofs = system.field("displacement").node_dofs(nodes);
+      const Field* p = m_.mixed ? &system.field("pressure") : nullptr;
+      const bool enriched = p && p->element_dof(e) >= 0;
+      if (p)
+        for (int a = 0; a < 4; ++a) dofs.push_back(p->node_dof(mesh_.tets[e][a]));
+      if (enriched) dofs.push_back(p->element_dof(e));
       Eigen::VectorXd f = Eigen::VectorXd::Zero(dofs.size());
       for (const auto& q : tet_rule(8)) {
         tet_shape(order, q.bary, N, dN);
@@ -181,7 +184,7 @@ class ManufacturedLoad final : public MacroTerm {
         const Vec3 t = m_.total_stress(X) * NdA;
         for (int a = 0; a < n; ++a) f.segment<3>(3 * a) += N[a] * t;
       }
-      dofs_.push_back(displacement_dofs(nodes));
+      dofs_.push_back(system.field("displacement").node_dofs(nodes));
       f_.push_back(std::move(f));
     }
   }
@@ -263,8 +266,9 @@ Errors solve_manufactured(int order, int divisions, bool mixed, double kappa, do
       err.u_H1 += dV * (G - grad_exact(X)).squaredNorm();
       if (mixed) {
         double p = 0;
-        for (int a = 0; a < 4; ++a) p += q.bary[a] * x[sim.system().pressure_dof(spec.mesh.tets[e][a])];
-        if (sim.system().element_pressure_dof(e) >= 0) p += x[sim.system().element_pressure_dof(e)];
+        const Field& pf = sim.system().field("pressure");
+        for (int a = 0; a < 4; ++a) p += q.bary[a] * x[pf.node_dof(spec.mesh.tets[e][a])];
+        if (pf.element_dof(e) >= 0) p += x[pf.element_dof(e)];
         err.p_L2 += dV * std::pow(p - p_exact(X), 2);
       }
     }

@@ -1,6 +1,6 @@
 // Issue 7, item 10: which files make a folder "an earlier run", and what --overwrite
 // removes (only fe2heart's files, never the user's).
-#include "coordinator/RunOutput.h"
+#include "coordinator/output/RunOutput.h"
 
 #include "common/error.h"
 

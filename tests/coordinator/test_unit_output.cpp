@@ -6,7 +6,7 @@
 #include "common/cellmodels/cell_model_factory.h"
 #include "common/materials/Myocardium.h"
 #include "coordinator/PointEvaluator.h"
-#include "coordinator/UnitOutput.h"
+#include "coordinator/output/UnitOutput.h"
 #include "tests/worker/unit_fixtures.h"
 #include "worker/unit_fields.h"
 

@@ -7,7 +7,7 @@
 //   farm_check trace DIR KEY MIN MAX                  every line of trace_iterations.jsonl has
 //                                                     MIN <= KEY <= MAX (e.g. macro_law_jobs_sent 0 0)
 // Prints what it compared; exits 1 on a failed check, 2 on unreadable input.
-#include "coordinator/trace_analysis.h"
+#include "coordinator/farm/trace_analysis.h"
 
 #include <nlohmann/json.hpp>
 

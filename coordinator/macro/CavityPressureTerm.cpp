@@ -1,0 +1,109 @@
+#include "coordinator/macro/CavityPressureTerm.h"
+
+#include "common/error.h"
+#include "common/mesh/cavity_volume.h"
+#include "common/fem/follower_pressure.h"
+
+namespace fe2 {
+
+CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, bool assembles)
+    : spec_(spec), circulation_(*spec.circulation), assembles_(assembles) {
+  committed_.assign(circulation_.state_size(), 0.0);
+  circulation_.initial_state(committed_);
+  current_ = committed_;
+  const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(3 * spec.mesh.num_nodes());
+  for (int c : spec.coupled_cavities) {
+    Cavity cav;
+    cav.surface = spec.cavities[c].second;
+    const CavityVolume v = cavity_volume(spec.mesh, cav.surface, u0);
+    for (const auto& [dof, _] : v.dV_du) cav.volume_dofs.push_back(dof);
+    V_ref_.push_back(v.volume);
+    cavities_.push_back(std::move(cav));
+  }
+  V_n_ = V_ref_;
+}
+
+void CavityPressureTerm::declare(MacroSystem& system) {
+  u_ = &system.field("displacement");
+  pc_ = &system.field("cavity_pressure");
+  // cavity_volume() reads ū node-major over the whole mesh (its DOFs 3a + i).
+  FE2_CHECK(u_->offset() == 0 && static_cast<int>(u_->nodes().size()) == spec_.mesh.num_nodes(),
+            "the cavity term needs the displacement field first and on every mesh node");
+  for (size_t i = 0; i < cavities_.size(); ++i) cavity_dofs_.push_back(pc_->global_dof(static_cast<int>(i)));
+  if (!assembles_) return;
+  for (size_t i = 0; i < cavities_.size(); ++i) {
+    Cavity& cav = cavities_[i];
+    cav.dof = cavity_dofs_[i];
+    for (const auto& tri : spec_.mesh.faces.at(cav.surface)) {
+      Face f;
+      f.nodes = spec_.mesh.face_nodes(tri);
+      f.dofs = u_->node_dofs(f.nodes);
+      f.local_uu = system.declare_local(f.dofs);
+      f.local_up = system.declare_local(f.dofs, {cav.dof});
+      cav.faces.push_back(std::move(f));
+    }
+    cav.local_pu = system.declare_local({cav.dof}, cav.volume_dofs);
+  }
+  local_pp_ = system.declare_local(cavity_dofs_);
+}
+
+void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  if (!assembles_) return;
+  const int n = static_cast<int>(cavities_.size());
+  std::vector<double> p(n);
+  for (int i = 0; i < n; ++i) p[i] = state.x[cavity_dofs_[i]];
+  flows_ = circulation_.step(state.time, state.dt, p, committed_, current_);
+  const Eigen::VectorXd u = state.x.head(u_->size());
+  Eigen::VectorXd f1;
+  Eigen::MatrixXd dfdx1;
+  std::vector<Vec3> x;
+  for (int i = 0; i < n; ++i) {
+    Cavity& cav = cavities_[i];
+    // The load is linear in p_c: with the unit-pressure force f₁ (= −∫N n da),
+    // f_ext = p_c f₁, ∂f_ext/∂ū = p_c ∂f₁/∂ū and ∂f_ext/∂p_c = f₁.
+    for (const Face& f : cav.faces) {
+      x.clear();
+      for (int a : f.nodes) x.push_back(spec_.mesh.nodes[a] + state.x.segment<3>(u_->node_dof(a)));
+      follower_pressure(x, 1.0, f1, dfdx1);
+      out.add_tangent(f.local_uu, -p[i] * dfdx1);  // R = f_int − f_ext
+      out.add_tangent(f.local_up, -f1);
+      out.add_external(f.dofs, p[i] * f1);
+    }
+    // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
+    const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u);
+    Eigen::MatrixXd row(1, static_cast<Eigen::Index>(v.dV_du.size()));
+    for (size_t k = 0; k < v.dV_du.size(); ++k) row(0, static_cast<Eigen::Index>(k)) = v.dV_du[k].second;
+    out.add_tangent(cav.local_pu, row);
+    out.add_internal({cav.dof}, Eigen::VectorXd::Constant(1, v.volume - V_n_[i] - state.dt * flows_.Q_net[i]));
+  }
+  Eigen::MatrixXd Kpp(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) Kpp(i, j) = -state.dt * flows_.dQ(i, j);
+  out.add_tangent(local_pp_, Kpp);
+}
+
+void CavityPressureTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (!assembles_ || field.id() != pc_->id()) return;
+  for (size_t i = 0; i < V_ref_.size(); ++i) scale[static_cast<Eigen::Index>(i)] += V_ref_[i];
+}
+
+void CavityPressureTerm::commit(const MacroState& state) {
+  committed_ = current_;
+  const Eigen::VectorXd u = state.x.head(u_->size());
+  for (size_t i = 0; i < cavities_.size(); ++i) V_n_[i] = cavity_volume(spec_.mesh, cavities_[i].surface, u).volume;
+}
+
+void CavityPressureTerm::rollback() { current_ = committed_; }
+
+void CavityPressureTerm::save(ByteWriter& w) const {
+  w.put_array(committed_.data(), committed_.size());
+  w.put_array(V_n_.data(), V_n_.size());
+}
+
+void CavityPressureTerm::restore(ByteReader& r) {
+  committed_ = r.get_array<double>(static_cast<int64_t>(committed_.size()));
+  V_n_ = r.get_array<double>(static_cast<int64_t>(V_n_.size()));
+  current_ = committed_;
+}
+
+}  // namespace fe2

@@ -1,0 +1,74 @@
+#pragma once
+// Cavities coupled strongly to a 0D circulation: each cavity pressure p_c is an unknown
+// of the macro system (the field "cavity_pressure", one scalar per coupled cavity in
+// RunSpec::coupled_cavities order) and this term adds, per
+// cavity with endocardial surface Γ_c and volume V_c(ū) (cavity_volume.h):
+//
+//   R_u += −p_c ∫_Γc N n da             (follower pressure; K_uu = −p_c ∂(∫N n da)/∂ū,
+//                                          K_u,pc = −∫_Γc N n da)
+//   R_c  = V_c(ū) − V_c,n − Δt Q_net,c(p)  (the volume the circulation lets in over the
+//                                          step, backward Euler; Circulation.h)
+//   K_c,u = ∂V_c/∂ū,   K_c,p = −Δt ∂Q_net,c/∂p
+//
+// With both valves closed Q_net ≈ 0 and R_c is the isovolumic constraint; open, it is
+// the flow balance. The circulation's state advances with the step from its committed
+// value at every evaluation and is committed / rolled back with the step.
+//
+// R_c has the units of a volume; its scale is the cavity's unloaded volume.
+//
+// The cavity integrals need the whole surface, so one coordinator (part 0) assembles the
+// term; MUMPS sums the distributed input.
+#include "common/circulation/Circulation.h"
+#include "coordinator/macro/MacroTerm.h"
+#include "coordinator/RunSpec.h"
+
+namespace fe2 {
+
+class CavityPressureTerm final : public MacroTerm {
+ public:
+  /// `assembles`: this coordinator assembles the term (exactly one does).
+  CavityPressureTerm(const RunSpec& spec, bool assembles);
+  std::string name() const override { return "cavity pressure"; }
+  void declare(MacroSystem& system) override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// The cavity pressures' scale: the reference volumes (added where `assembles`).
+  void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
+  void commit(const MacroState& state) override;
+  void rollback() override;
+  /// The circulation's committed state and V_c of the last step.
+  void save(ByteWriter& w) const override;
+  void restore(ByteReader& r) override;
+
+  /// The circulation's answer at the last assembly (valid where `assembles`).
+  const CavityFlows& flows() const { return flows_; }
+  /// V_c at the end of the last committed step, per circulation cavity.
+  const std::vector<double>& committed_volumes() const { return V_n_; }
+  /// The reference (unloaded) cavity volumes, to scale the volume residuals.
+  const std::vector<double>& reference_volumes() const { return V_ref_; }
+
+ private:
+  struct Face {
+    std::vector<int> nodes, dofs;
+    int local_uu = -1, local_up = -1;
+  };
+  struct Cavity {
+    std::string surface;
+    int dof = -1;
+    std::vector<Face> faces;
+    std::vector<int> volume_dofs;  ///< the DOFs ∂V/∂ū touches (fixed by the mesh)
+    int local_pu = -1;
+  };
+  const RunSpec& spec_;
+  const Circulation& circulation_;
+  bool assembles_;
+  std::vector<Cavity> cavities_;
+  int local_pp_ = -1;
+  const Field* u_ = nullptr;
+  const Field* pc_ = nullptr;
+  std::vector<int> cavity_dofs_;
+  std::vector<double> committed_, current_;  ///< circulation state
+  std::vector<double> V_n_, V_ref_;
+  CavityFlows flows_;
+};
+
+}  // namespace fe2

@@ -1,0 +1,65 @@
+#include "coordinator/macro/MacroSolver.h"
+
+#include "common/linalg/gmres.h"
+
+#include <spdlog/spdlog.h>
+
+namespace fe2 {
+
+MacroSolver::MacroSolver(const proto::Group& group, int n, MacroSolverOptions options)
+    : group_(group), mumps_(group.raw(), n), options_(options) {}
+
+void MacroSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
+  rows_ = rows;
+  cols_ = cols;
+  mumps_.set_pattern(std::move(rows), std::move(cols));
+  have_factor_ = false;
+}
+
+void MacroSolver::solve(const std::vector<double>& values, std::vector<double>& rhs) {
+  if (options_.refresh == MacroSolverOptions::Refresh::adaptive && have_factor_ &&
+      solve_with_kept_factor(values, rhs))
+    return;
+  have_factor_ = false;  // a failed factorization leaves none to keep
+  mumps_.factorize(values);
+  have_factor_ = true;
+  ++stats_.factorizations;
+  mumps_.solve(rhs);
+}
+
+bool MacroSolver::solve_with_kept_factor(const std::vector<double>& values, std::vector<double>& rhs) {
+  const int n = mumps_.size();
+  Vec b = Eigen::Map<const Vec>(rhs.data(), n);
+  group_.bcast(b.data(), n, 0);
+  // y = S̄ x: each rank's triplets, summed over the group.
+  const LinearOp A = [&](const Vec& x, Vec& y) {
+    y.setZero(n);
+    for (size_t k = 0; k < values.size(); ++k) y[rows_[k]] += values[k] * x[cols_[k]];
+    group_.allreduce_sum(y.data(), n);
+  };
+  // z = M⁻¹ r with the kept factor (MUMPS solves on the host; every rank gets z).
+  std::vector<double> buffer(n);
+  const LinearOp Minv = [&](const Vec& r, Vec& z) {
+    Eigen::Map<Vec>(buffer.data(), n) = r;
+    mumps_.solve(buffer);
+    group_.bcast(buffer.data(), n, 0);
+    z = Eigen::Map<const Vec>(buffer.data(), n);
+  };
+  Vec x = Vec::Zero(n);
+  const double tol = options_.gmres_rtol * b.norm();
+  // Twice the refactor threshold before giving up on the kept factor this time.
+  const GmresResult g = gmres(A, Minv, b, x, tol, 2 * options_.max_gmres_iterations,
+                              2 * options_.max_gmres_iterations);
+  stats_.gmres_iterations += g.iterations;
+  if (!g.converged || !x.allFinite()) {
+    spdlog::debug("macro GMRES with the kept factor: {} iterations, |r|/|b| = {:.2e}; refactoring",
+                  g.iterations, g.residual / b.norm());
+    return false;
+  }
+  ++stats_.reused;
+  if (g.iterations > options_.max_gmres_iterations) have_factor_ = false;  // refactor next time
+  Eigen::Map<Vec>(rhs.data(), n) = x;
+  return true;
+}
+
+}  // namespace fe2

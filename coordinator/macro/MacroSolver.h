@@ -1,0 +1,58 @@
+#pragma once
+// The macro Newton system S̄ Δx = −R̃ (Eq. 10) on the coordinator group, with the
+// MUMPS factor kept across Newton iterations and steps as the paper keeps a unit's
+// (Fig. 6): policy `every_iteration` factors every call (a direct solve); `adaptive`
+// factors only when there is no factor yet, when the last solve needed more than
+// `max_gmres_iterations` GMRES iterations, or when GMRES on the current S̄,
+// right-preconditioned by the kept factor, fails to reach ‖b − S̄x‖ ≤ gmres_rtol ‖b‖.
+// At the macro sizes of a heart the factorization is most of the macro time (a 5k-unknown
+// quadratic LV: 81 %), a solve with the kept factor a few percent of it.
+//
+// Every coordinator runs the same GMRES on the same numbers (the matrix-vector product
+// is summed over the group, the preconditioner is MUMPS's collective solve, its result
+// broadcast), so all take the same decisions without further messages, and the policy
+// depends only on iteration counts: deterministic.
+#include "coordinator/macro/MacroSolverOptions.h"
+#include "coordinator/macro/MumpsSolver.h"
+#include "proto/Transport.h"
+
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+class MacroSolver {
+ public:
+  struct Stats {
+    int factorizations = 0;
+    int gmres_iterations = 0;  ///< over the solves with a kept factor
+    int reused = 0;            ///< solves that used a kept factor
+  };
+
+  /// @note Collective on `group` (lent; must outlive this object).
+  MacroSolver(const proto::Group& group, int n, MacroSolverOptions options);
+
+  /// This rank's triplets (0-based); runs the analysis. @note Collective.
+  void set_pattern(std::vector<int> rows, std::vector<int> cols);
+  /// Solves with this rank's triplet `values` (summed over the group): `rhs` (length n,
+  /// significant on rank 0) is overwritten with the solution on rank 0. Throws
+  /// SingularMatrixError / NumericalError as MumpsSolver does. @note Collective.
+  void solve(const std::vector<double>& values, std::vector<double>& rhs);
+  /// The next solve factors (e.g. after a rollback, if a caller wants it).
+  void drop_factor() { have_factor_ = false; }
+
+  const Stats& stats() const { return stats_; }
+  const std::string& ordering() const { return mumps_.ordering(); }
+
+ private:
+  bool solve_with_kept_factor(const std::vector<double>& values, std::vector<double>& rhs);
+
+  const proto::Group& group_;
+  MumpsSolver mumps_;
+  MacroSolverOptions options_;
+  std::vector<int> rows_, cols_;
+  bool have_factor_ = false;
+  Stats stats_;
+};
+
+}  // namespace fe2

@@ -1,0 +1,86 @@
+#pragma once
+// A macro term: one piece of physics of the macro problem over the block system
+// (MFEM's integrators on a BlockOperator): the points' stress, inertia, follower
+// pressure, incompressibility, cavity pressures. Each looks up the fields it needs by
+// name and declares its local matrices once, then adds its residual and tangent every
+// Newton iteration, and keeps whatever history it has through commit/rollback. A term
+// that is off is not built: it allocates and assembles nothing.
+//
+// Sign convention: the residual is R = f_int − f_ext (zero at equilibrium) and the
+// tangent is K = ∂R/∂x, so Newton solves K Δx = −R. A point model's R̃ (with P̃, Eq. 9)
+// drives Newton; the true R (with P̄) decides convergence.
+#include "common/bytes.h"
+#include "coordinator/macro/MacroSystem.h"
+#include "coordinator/macro/TimeIntegration.h"
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+/// The state the terms read: the current iterate and its rates, at the new time.
+struct MacroState {
+  const Eigen::VectorXd& x;   ///< every DOF: ū, then p (MacroSystem offsets)
+  const Eigen::VectorXd& v;   ///< ū̇ (displacement block; zero when quasi-static)
+  const Eigen::VectorXd& a;   ///< ṻ
+  double time = 0.0;
+  double dt = 0.0;
+  double c_mass = 0.0;        ///< ∂ṻ/∂ū: 1/(βΔt²) under Newmark, 0 when quasi-static
+};
+
+/// Where the terms add: tangent values in the pattern, and residual parts over every DOF.
+class MacroAssembly {
+ public:
+  MacroAssembly(const MacroSystem& system, std::vector<double>& values);
+  void clear();
+
+  /// K over the local matrix's DOFs (MacroSystem::declare_local) into the matrix.
+  void add_tangent(int local, const Eigen::MatrixXd& K);
+  /// Internal force over `dofs`: the true one (convergence) and the one Newton uses.
+  void add_internal(const std::vector<int>& dofs, const Eigen::VectorXd& f_true,
+                    const Eigen::VectorXd& f_newton);
+  void add_internal(const std::vector<int>& dofs, const Eigen::VectorXd& f) { add_internal(dofs, f, f); }
+  /// External force over `dofs` (loads): R = f_int − f_ext.
+  void add_external(const std::vector<int>& dofs, const Eigen::VectorXd& f);
+
+  /// The prescribed increment Δx_D of the first iteration, or null: every local
+  /// matrix added while it is set also moves K_fD Δx_D to the right-hand side.
+  void set_lift(const Eigen::VectorXd* du_D) { lift_ = du_D; }
+
+  const Eigen::VectorXd& internal() const { return internal_; }
+  const Eigen::VectorXd& external() const { return external_; }
+  Eigen::VectorXd& internal() { return internal_; }
+  Eigen::VectorXd& external() { return external_; }
+  /// −R̃ − K_fD Δx_D on the free equations: the Newton right-hand side (this process's part).
+  std::vector<double>& rhs() { return rhs_; }
+
+ private:
+  const MacroSystem& system_;
+  std::vector<double>& values_;
+  Eigen::VectorXd internal_, external_;
+  std::vector<double> rhs_;
+  const Eigen::VectorXd* lift_ = nullptr;
+};
+
+class MacroTerm {
+ public:
+  virtual ~MacroTerm() = default;
+  virtual std::string name() const = 0;
+  /// Looks up its fields and declares its local matrices in the pattern (once, before
+  /// the first assembly).
+  virtual void declare(MacroSystem& system) = 0;
+  /// Adds this process's part of the residual scale s of `field` (its size), for the
+  /// fields measured by ResidualNorm::scaled_l2 or scaled_max; summed over coordinators.
+  virtual void add_residual_scale(const Field& /*field*/, Eigen::VectorXd& /*scale*/) const {}
+  /// Adds residual and tangent at `state`.
+  virtual void assemble(const MacroState& state, MacroAssembly& out) = 0;
+  /// The step converged / is being cut back (terms with their own history).
+  virtual void commit(const MacroState&) {}
+  virtual void rollback() {}
+  /// The committed history, for checkpoints (terms without one write nothing).
+  virtual void save(ByteWriter&) const {}
+  virtual void restore(ByteReader&) {}
+};
+
+}  // namespace fe2

@@ -1,0 +1,76 @@
+#include "coordinator/macro/macro_scene.h"
+
+#include "coordinator/macro/CavityPressureTerm.h"
+#include "coordinator/macro/FollowerPressureTerm.h"
+#include "coordinator/macro/IncompressibilityTerm.h"
+#include "coordinator/macro/InertiaTerm.h"
+
+namespace fe2 {
+
+FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension) {
+  FieldTable t;
+  FieldDecl u;
+  u.name = "displacement";
+  u.components = 3;
+  u.space = FieldSpace::nodal;
+  // Quasi-static: no rate; the point models difference Z̄ over the step themselves.
+  u.time = spec.dynamic ? TimeScheme::newmark : TimeScheme::none;
+  u.norm = ResidualNorm::relative_to_load;
+  u.rtol = spec.newton_rtol;
+  t.add(u);
+  if (spec.formulation.mixed) {
+    FieldDecl p;
+    p.name = "pressure";
+    p.space = spec.formulation.element_pressure ? FieldSpace::vertex_element : FieldSpace::vertex;
+    // R_p relative to ∫N_p: the volumetric strain J̄ − 1 (+ p/κ) not yet removed.
+    p.norm = ResidualNorm::scaled_l2;
+    p.rtol = spec.newton_rtol;
+    t.add(p);
+  }
+  if (spec.circulation) {
+    FieldDecl pc;
+    pc.name = "cavity_pressure";
+    pc.space = FieldSpace::global;
+    pc.count = static_cast<int>(spec.coupled_cavities.size());
+    // R_c relative to the cavity's unloaded volume, the worst cavity.
+    pc.norm = ResidualNorm::scaled_max;
+    pc.rtol = spec.newton_rtol;
+    t.add(pc);
+  }
+  for (const FieldDecl& f : extension.fields) t.add(f);
+  t.number(spec.mesh);
+  return t;
+}
+
+MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& extension) {
+  FieldTable fields = scene_fields(spec, extension);
+  MacroConstraints constraints;
+  const Field& u = fields.at("displacement");
+  for (size_t d = 0; d < spec.dirichlet.size(); ++d) {
+    const DirichletSpec& ds = spec.dirichlet[d];
+    for (int i = 0; i < 3; ++i) {
+      if (!ds.fixed[i]) continue;
+      const int source = constraints.add_value(
+          [&spec, d, i](double t) { return spec.dirichlet[d].value[i] * ramp_factor(spec.dirichlet[d].ramp, t, spec.t_end); });
+      for (int node : spec.mesh.node_sets.at(ds.set)) constraints.prescribe(u.node_dof(node, i), source);
+    }
+  }
+  if (extension.constrain) extension.constrain(fields, constraints);
+  return MacroSystem(spec.mesh, std::move(fields), std::move(constraints));
+}
+
+std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const MacroPoints& points,
+                                                    const std::vector<int>& owned_elements,
+                                                    const std::vector<PointResponse>& responses, int part,
+                                                    int parts) {
+  std::vector<std::unique_ptr<MacroTerm>> terms;
+  terms.push_back(std::make_unique<PointStressTerm>(spec.mesh, points, owned_elements, responses));
+  if (spec.dynamic) terms.push_back(std::make_unique<InertiaTerm>(spec.mesh, owned_elements, spec.density));
+  if (!spec.pressure.empty()) terms.push_back(std::make_unique<FollowerPressureTerm>(spec, part, parts));
+  if (spec.circulation) terms.push_back(std::make_unique<CavityPressureTerm>(spec, part == 0));
+  if (spec.formulation.mixed)
+    terms.push_back(std::make_unique<IncompressibilityTerm>(spec.mesh, points, owned_elements, spec.formulation));
+  return terms;
+}
+
+}  // namespace fe2

@@ -1,0 +1,277 @@
+// The macro side's house: fields as data (numbering, regions), constraints (prescribed
+// values, ties, chains, cycles), time integration per field, and a test-only field on a
+// second region tied to the wall on their interface, solved with the wall in one Newton
+// loop through the field table alone (macro/macro_scene.h: MacroExtension).
+#include "common/fem/lagrange_tet.h"
+#include "common/fem/quadrature.h"
+#include "common/mesh/box_mesh.h"
+#include "common/mesh/regions.h"
+#include "coordinator/LocalPoints.h"
+#include "coordinator/macro/gather.h"
+#include "tests/coordinator/scene_fixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace fe2 {
+namespace {
+
+json box_scene(int order, int steps = 2) {
+  return {{"mesh", {{"kind", "box"}, {"hi", {1, 1, 1}}, {"divisions", {4, 2, 2}}, {"order", order}}},
+          {"models", {{"m", {{"kind", "macro_law"}, {"material", test::nh(1e3, 0.0)}}}}},
+          {"dirichlet", {{{"set", "xmin"}}, {{"set", "xmax"}, {"components", {0}}, {"value", {0.01, 0, 0}}}}},
+          {"time", {{"t_end", 1.0}, {"steps", steps}}},
+          {"newton", {{"rtol", 1e-11}, {"max_iterations", 20}}},
+          {"output", {{"vtu", false}}}};
+}
+
+/// Region 2 is the half x > 1/2 of the box, region 1 the rest.
+void split_regions(TetMesh& m) {
+  for (int e = 0; e < m.num_tets(); ++e) {
+    double x = 0.0;
+    for (int a : m.tets[e]) x += 0.25 * m.nodes[a].x();
+    m.region[e] = x > 0.5 ? 2 : 1;
+  }
+}
+
+TEST(FieldTable, NumbersEachFieldAsABlockOnItsSpaceAndRegion) {
+  RunSpec spec = read_run_spec(box_scene(2), "");
+  split_regions(spec.mesh);
+  const TetMesh& m = spec.mesh;
+  FieldTable t;
+  t.add({"displacement", 3, FieldSpace::nodal, {}, 0, TimeScheme::newmark, ResidualNorm::relative_to_load, 1e-8});
+  t.add({"pressure", 1, FieldSpace::vertex_element, {}, 0, TimeScheme::none, ResidualNorm::scaled_l2, 1e-8});
+  t.add({"cavity_pressure", 1, FieldSpace::global, {}, 2, TimeScheme::none, ResidualNorm::scaled_max, 1e-8});
+  t.add({"heat", 1, FieldSpace::nodal, {2}, 0, TimeScheme::backward_euler, ResidualNorm::relative_to_load, 1e-8});
+  t.number(m);
+  const Field& u = t.at("displacement");
+  EXPECT_EQ(u.offset(), 0);
+  EXPECT_EQ(u.size(), 3 * m.num_nodes());
+  EXPECT_EQ(u.node_dof(7, 2), 3 * 7 + 2);  // a field on every node: the DOF 3a + i
+  const Field& p = t.at("pressure");
+  const int nv = static_cast<int>(m.vertices().size());
+  EXPECT_EQ(p.offset(), u.size());
+  EXPECT_EQ(p.size(), nv + m.num_tets() - 1);
+  EXPECT_EQ(p.element_dof(0), -1);
+  EXPECT_EQ(p.element_dof(1), p.offset() + nv);
+  EXPECT_FALSE(p.has_node(m.edge_nodes.begin()->second));  // P1 on a quadratic mesh
+  const Field& pc = t.at("cavity_pressure");
+  EXPECT_EQ(pc.global_dof(1), p.offset() + p.size() + 1);
+  const Field& h = t.at("heat");
+  int in_region = 0;
+  std::vector<char> seen(m.num_nodes(), 0);
+  for (int e = 0; e < m.num_tets(); ++e)
+    if (m.region[e] == 2)
+      for (int a : m.element_nodes(e)) in_region += !seen[a]++;
+  EXPECT_EQ(h.size(), in_region);
+  EXPECT_EQ(h.offset() + h.size(), t.num_dofs());
+  EXPECT_TRUE(h.has_node(m.num_nodes() - 1) || !seen[m.num_nodes() - 1]);
+  EXPECT_EQ(&t.field_of(h.offset()), &h);
+  try {
+    (void)t.at("pressur");
+    FAIL() << "an unknown field was found";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("displacement, pressure, cavity_pressure, heat"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MacroConstraints, PrescribedTiedAndChainedDofsShareEquationsAsDeclared) {
+  MacroConstraints c;
+  const int g = c.add_value([](double t) { return 2.0 * t; });
+  c.prescribe(0, g);
+  c.tie(3, 1, 0.5);   // x3 = x1 + 0.5
+  c.tie(4, 3, 0.25);  // x4 = x3 + 0.25 = x1 + 0.75 (a chain)
+  c.tie(5, 0, 1.0);   // tied to a prescribed DOF: prescribed, 2t + 1
+  c.close(7);
+  EXPECT_EQ(c.num_free(), 3);  // DOFs 1, 2, 6
+  EXPECT_EQ(c.eq(0), -1);
+  EXPECT_EQ(c.eq(1), 0);
+  EXPECT_EQ(c.eq(2), 1);
+  EXPECT_EQ(c.eq(3), 0);
+  EXPECT_EQ(c.eq(4), 0);
+  EXPECT_EQ(c.eq(6), 2);
+  ASSERT_EQ(c.prescribed(), (std::vector<int>{0, 5}));
+  EXPECT_DOUBLE_EQ(c.prescribed_value(0, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(c.prescribed_value(1, 0.5), 2.0);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(7);
+  x[1] = 3.0;
+  c.distribute(x);
+  EXPECT_DOUBLE_EQ(x[3], 3.5);
+  EXPECT_DOUBLE_EQ(x[4], 3.75);
+  EXPECT_TRUE(c.is_master(1));
+  EXPECT_FALSE(c.is_master(3));
+
+  MacroConstraints cycle;
+  cycle.tie(0, 1);
+  cycle.tie(1, 2);
+  cycle.tie(2, 0);
+  EXPECT_THROW(cycle.close(3), InputError);
+}
+
+TEST(TimeIntegration, EachFieldAdvancesByItsOwnScheme) {
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {1, 1, 1});
+  FieldTable t;
+  t.add({"second", 1, FieldSpace::global, {}, 2, TimeScheme::newmark, ResidualNorm::relative_to_load, 1e-8});
+  t.add({"first", 1, FieldSpace::global, {}, 2, TimeScheme::backward_euler, ResidualNorm::relative_to_load, 1e-8});
+  t.add({"none", 1, FieldSpace::global, {}, 2, TimeScheme::none, ResidualNorm::relative_to_load, 1e-8});
+  t.number(m);
+  const double beta = 0.3, gamma = 0.6, dt = 0.1;
+  const TimeIntegration ti(beta, gamma);
+  Eigen::VectorXd x(6), x_n(6), v_n(6), a_n(6), v = Eigen::VectorXd::Zero(6), a = Eigen::VectorXd::Zero(6);
+  x << 1, 2, 3, 4, 5, 6;
+  x_n << 0.5, 1, 2, 3, 1, 1;
+  v_n << 1, -1, 2, 0, 7, 7;
+  a_n << 3, 1, -2, 1, 7, 7;
+  for (const Field& f : t) ti.rates(f, dt, x, x_n, v_n, a_n, v, a);
+  for (int k = 0; k < 2; ++k) {  // Newmark-β
+    const double ak = (x[k] - x_n[k] - dt * v_n[k]) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n[k];
+    EXPECT_NEAR(a[k], ak, 1e-9 * std::abs(ak));
+    EXPECT_NEAR(v[k], v_n[k] + dt * ((1 - gamma) * a_n[k] + gamma * ak), 1e-9 * std::abs(ak));
+  }
+  for (int k = 2; k < 4; ++k) {  // backward Euler
+    EXPECT_DOUBLE_EQ(v[k], (x[k] - x_n[k]) / dt);
+    EXPECT_EQ(a[k], 0.0);
+  }
+  EXPECT_EQ(v[4], 0.0);  // no rate
+  EXPECT_EQ(a[5], 0.0);
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt).da_dx, 1.0 / (beta * dt * dt));
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt).dv_dx, gamma / (beta * dt));
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("first"), dt).dv_dx, 1.0 / dt);
+  EXPECT_EQ(ti.coefficients(t.at("none"), dt).dv_dx, 0.0);
+}
+
+/// A test-only field: c ∂T/∂t − ∇·∇T = s on the elements of its region, P1/P2 Galerkin:
+///   R = M (c v + ... ) : R_a = ∫ c N_a Ṫ + ∇N_a·∇T − N_a s,  K = c (∂v/∂T) M + D.
+class ScalarDiffusionTerm final : public MacroTerm {
+ public:
+  ScalarDiffusionTerm(const TetMesh& mesh, std::string field, double capacity, double conductivity, double source)
+      : mesh_(mesh), field_(std::move(field)), c_(capacity), k_(conductivity), s_(source) {}
+  std::string name() const override { return "scalar diffusion"; }
+  void declare(MacroSystem& system) override {
+    T_ = &system.field(field_);
+    const auto rule = tet_rule(2 * mesh_.order());
+    Eigen::VectorXd N;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+    for (int e = 0; e < mesh_.num_tets(); ++e) {
+      const auto nodes = mesh_.element_nodes(e);
+      if (!T_->has_node(nodes[0]) || !T_->has_node(nodes[1]) || !T_->has_node(nodes[2]) || !T_->has_node(nodes[3]))
+        continue;
+      const int n = static_cast<int>(nodes.size());
+      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n), D = Eigen::MatrixXd::Zero(n, n);
+      Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+      for (const auto& q : rule) {
+        tet_shape(mesh_.order(), q.bary, N, dN);
+        Mat3 J = Mat3::Zero();
+        for (int a = 0; a < n; ++a) J += mesh_.nodes[nodes[a]] * dN.col(a).transpose();
+        const double dV = q.weight * J.determinant();
+        const Eigen::MatrixXd grad = J.transpose().inverse() * dN;
+        M += dV * N * N.transpose();
+        D += dV * grad.transpose() * grad;
+        f += dV * N;
+      }
+      mass_.push_back(std::move(M));
+      stiffness_.push_back(std::move(D));
+      load_.push_back(std::move(f));
+      dofs_.push_back(T_->node_dofs(nodes));
+      local_.push_back(system.declare_local(dofs_.back()));
+    }
+  }
+  void assemble(const MacroState& s, MacroAssembly& out) override {
+    const double dv = s.rate(*T_).dv_dx;
+    for (size_t k = 0; k < dofs_.size(); ++k) {
+      const Eigen::VectorXd T = gather(s.x, dofs_[k]), Tdot = gather(s.v, dofs_[k]);
+      out.add_internal(dofs_[k], c_ * mass_[k] * Tdot + k_ * stiffness_[k] * T);
+      out.add_external(dofs_[k], s_ * load_[k]);
+      out.add_tangent(local_[k], c_ * dv * mass_[k] + k_ * stiffness_[k]);
+    }
+  }
+  size_t elements() const { return dofs_.size(); }
+
+ private:
+  const TetMesh& mesh_;
+  std::string field_;
+  double c_, k_, s_;
+  const Field* T_ = nullptr;
+  std::vector<Eigen::MatrixXd> mass_, stiffness_;
+  std::vector<Eigen::VectorXd> load_;
+  std::vector<std::vector<int>> dofs_;
+  std::vector<int> local_;
+};
+
+FieldDecl temperature(TimeScheme time) {
+  return {"temperature", 1, FieldSpace::nodal, {2}, 0, time, ResidualNorm::relative_to_load, 1e-10};
+}
+
+// The wall (both regions, a linear stretch u_x = 0.01 x t) and a steady diffusion field on
+// the half x > 1/2, tied to u_x on the interface x = 1/2 and held at 0 on x = 1: the
+// exact field is linear, T = u_x(1/2) (1 − x)/(1/2), which P1 and P2 reproduce.
+TEST(TestOnlyField, TiedToTheWallOnTheInterfaceItSolvesWithTheWallInOneNewtonLoop) {
+  for (int order : {1, 2}) {
+    RunSpec spec = read_run_spec(box_scene(order), "");
+    split_regions(spec.mesh);
+    const TetMesh& m = spec.mesh;
+    const std::vector<int> interface = interface_nodes(m, {1}, {2});
+    ASSERT_FALSE(interface.empty());
+    MacroExtension ext;
+    ext.fields.push_back(temperature(TimeScheme::none));
+    ext.constrain = [&](const FieldTable& fields, MacroConstraints& c) {
+      const Field& T = fields.at("temperature");
+      const Field& u = fields.at("displacement");
+      for (int a : interface) c.tie(T.node_dof(a), u.node_dof(a, 0));
+      const int zero = c.add_value([](double) { return 0.0; });
+      for (int a : m.node_sets.at("xmax")) c.prescribe(T.node_dof(a), zero);
+    };
+    LocalEvaluator points(spec.models, spec.model_of_points());
+    Simulation sim(spec, points, ext);
+    auto term = std::make_unique<ScalarDiffusionTerm>(m, "temperature", 0.0, 1.0, 0.0);
+    const ScalarDiffusionTerm* diffusion = term.get();
+    sim.add_term(std::move(term));
+    const RunResult r = sim.run();
+    ASSERT_TRUE(r.converged) << r.error;
+    EXPECT_GT(diffusion->elements(), 0u);
+    // One Newton loop over both fields: each step's history has both, and the linear
+    // coupled problem converges within a few iterations.
+    for (const StepRecord& h : r.history) {
+      EXPECT_FALSE(h.residual("temperature").empty());
+      EXPECT_EQ(h.residual("temperature").size(), h.residual("displacement").size());
+      EXPECT_LE(h.residual("temperature").back(), 1e-10);
+      EXPECT_LE(h.iterations, 4);
+    }
+    const Field& T = sim.system().field("temperature");
+    const Eigen::VectorXd u = sim.displacement();
+    const Eigen::VectorXd Tv = sim.field_values("temperature");
+    double u_half = 0.0;
+    for (int a : interface) u_half += u[3 * a] / static_cast<double>(interface.size());
+    EXPECT_NEAR(u_half, 0.005, 1e-9);  // the wall's stretch, unchanged by the field
+    double worst = 0.0;
+    for (int a : T.nodes()) {
+      const double exact = u_half * (1.0 - m.nodes[a].x()) / 0.5;
+      worst = std::max(worst, std::abs(Tv[T.node_dof(a) - T.offset()] - exact));
+    }
+    EXPECT_LT(worst, 1e-10 * u_half) << "order " << order;
+    for (int a : interface) EXPECT_EQ(Tv[T.node_dof(a) - T.offset()], u[3 * a]) << "tied node " << a;
+  }
+}
+
+// A first-order field without diffusion under a constant source, c Ṫ = s: backward Euler
+// is exact for a constant rate, T(t) = s t / c, and the consistent rate tangent (c/Δt) M
+// makes Newton converge at once.
+TEST(TestOnlyField, AFirstOrderFieldAdvancesByBackwardEuler) {
+  RunSpec spec = read_run_spec(box_scene(1, 4), "");
+  split_regions(spec.mesh);
+  MacroExtension ext;
+  ext.fields.push_back(temperature(TimeScheme::backward_euler));
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points, ext);
+  sim.add_term(std::make_unique<ScalarDiffusionTerm>(spec.mesh, "temperature", 2.0, 0.0, 3.0));
+  const RunResult r = sim.run();
+  ASSERT_TRUE(r.converged) << r.error;
+  const Eigen::VectorXd T = sim.field_values("temperature");
+  EXPECT_NEAR(T.minCoeff(), 1.5, 1e-12);
+  EXPECT_NEAR(T.maxCoeff(), 1.5, 1e-12);
+}
+
+}  // namespace
+}  // namespace fe2
