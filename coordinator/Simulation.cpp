@@ -341,8 +341,9 @@ void Simulation::update(bool first, const Eigen::VectorXd& du_D) {
   if (!std::all_of(du_.begin(), du_.end(), [](double x) { return std::isfinite(x); }))
     throw NumericalError("non-finite macro correction Δx");
   for (int dof = 0; dof < system_.num_dofs(); ++dof)
-    if (system_.eq(dof) >= 0) x_[dof] += du_[system_.eq(dof)];
+    if (system_.column(dof) >= 0) x_[dof] += du_[system_.column(dof)];
   if (first) x_ += du_D;
+  system_.constraints().distribute(x_);  // tied and following DOFs exactly at their master's value
 }
 
 bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {

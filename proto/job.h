@@ -78,7 +78,7 @@ struct JobOutput {
   uint8_t factor_rebuilt = 0;
   /// The refresh policy's cost model (worker/RefreshPolicy.h), in flops: this job's GMRES
   /// work beyond one iteration (0 if it refreshed), and what a refresh of the unit costs.
-  /// Coordinators sum them to decide collective refreshes (coordinator/CollectiveRefresh.h).
+  /// Coordinators sum them to decide collective refreshes (coordinator/farm/CollectiveRefresh.h).
   double excess_flops = 0.0;
   double refresh_flops = 0.0;
   uint8_t failed = 0;         ///< the unit could not do this iteration (NumericalError)

@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
 # Runs configs with two builds of fe2heart and compares their summary.json (a refactoring
 # must give the same answer, bit for bit on one rank).
-#   tools/compare_configs.sh BEFORE_BIN AFTER_BIN [-n RANKS] [--out DIR] [config.json ...]
+#   tools/compare_configs.sh BEFORE_BIN AFTER_BIN [-n RANKS] [--out DIR] [--keep-before] [config.json ...]
 # Without configs: every run spec in configs/ but the long ones (lv-beat-fine, biv-beat;
 # name them to include them). The runs go to DIR/before/<name> and DIR/after/<name>
-# (default out/compare); a run that failed before must fail alike after.
+# (default out/compare); a run that failed before must fail alike after. --keep-before
+# reuses the runs already in DIR/before (the old build need not exist any more).
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 [[ $# -ge 2 ]] || { sed -n '2,7p' "$0" >&2; exit 2; }
-before=$(realpath "$1") after=$(realpath "$2"); shift 2
-ranks=1 out="$top/out/compare" configs=()
+before=$(realpath -m "$1") after=$(realpath -m "$2"); shift 2
+ranks=1 out="$top/out/compare" configs=() keep=0
 while [[ $# -gt 0 ]]; do
   case $1 in
     -n) ranks=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
+    --keep-before) keep=1; shift ;;
     *) configs+=("$1"); shift ;;
   esac
 done
@@ -32,6 +34,7 @@ for c in "${configs[@]}"; do
   name=$(basename "$c" .json)
   for side in before after; do
     bin=$before; [[ $side == after ]] && bin=$after
+    [[ $side == before && $keep == 1 && -f $out/before/$name/summary.json ]] && continue
     mkdir -p "$out/$side"
     if ! mpirun -n "$ranks" "$bin" run "$c" --out "$out/$side/$name" --overwrite \
          >"$out/$side/$name.log" 2>&1; then

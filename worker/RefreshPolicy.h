@@ -12,7 +12,7 @@
 //                    has cost as much as the refresh it avoids, factor + 9 solves (χ).
 //                    Flop counts, not seconds: the same decision on every rank and run.
 //   collective       the same rental, decided by the coordinators for all units of a model
-//                    at once (coordinator/CollectiveRefresh.h): the unit never refreshes on
+//                    at once (coordinator/farm/CollectiveRefresh.h): the unit never refreshes on
 //                    its own and reports each job's excess and its refresh cost instead. With
 //                    one unit per worker a unit refreshing alone stalls every other worker
 //                    for a factorization; refreshing together costs the farm one.

@@ -18,7 +18,7 @@ int MacroSystem::declare_local(std::vector<int> row_dofs, std::vector<int> col_d
   b.first_slot = slot_.size();
   for (int r : row_dofs)
     for (int c : col_dofs) {
-      const int er = eq(r), ec = eq(c);
+      const int er = eq(r), ec = column(c);
       if (er < 0 || ec < 0) {
         slot_.push_back(-1);
         continue;

@@ -33,8 +33,10 @@ class MacroSystem {
   // --- equations
   const MacroConstraints& constraints() const { return constraints_; }
   int num_free() const { return constraints_.num_free(); }
-  /// Equation of a DOF, or −1 if prescribed (a tied DOF has its master's).
+  /// Row equation of a DOF, or −1 (prescribed, following); a tied DOF has its master's.
   int eq(int dof) const { return constraints_.eq(dof); }
+  /// Column equation of a DOF, or −1 (prescribed); tied and following DOFs have their master's.
+  int column(int dof) const { return constraints_.column(dof); }
   /// Prescribed DOFs and their value at time t.
   const std::vector<int>& prescribed() const { return constraints_.prescribed(); }
   double prescribed_value(size_t k, double t) const { return constraints_.prescribed_value(k, t); }

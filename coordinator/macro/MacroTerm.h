@@ -21,12 +21,16 @@ namespace fe2 {
 
 /// The state the terms read: the current iterate and its rates, at the new time.
 struct MacroState {
-  const Eigen::VectorXd& x;   ///< every DOF: ū, then p (MacroSystem offsets)
-  const Eigen::VectorXd& v;   ///< ū̇ (displacement block; zero when quasi-static)
-  const Eigen::VectorXd& a;   ///< ṻ
+  const Eigen::VectorXd& x;   ///< every DOF, field by field (FieldTable offsets)
+  const Eigen::VectorXd& v;   ///< ẋ of the fields that have a rate (zero elsewhere)
+  const Eigen::VectorXd& a;   ///< ẍ of second-order fields
   double time = 0.0;
   double dt = 0.0;
-  double c_mass = 0.0;        ///< ∂ṻ/∂ū: 1/(βΔt²) under Newmark, 0 when quasi-static
+  std::vector<RateCoefficients> rates;  ///< per field id: ∂v/∂x, ∂a/∂x (empty: none)
+  /// ∂v/∂x and ∂a/∂x of `field`'s scheme (zero if it has no rate).
+  RateCoefficients rate(const Field& field) const {
+    return field.id() < static_cast<int>(rates.size()) ? rates[field.id()] : RateCoefficients{};
+  }
 };
 
 /// Where the terms add: tangent values in the pattern, and residual parts over every DOF.

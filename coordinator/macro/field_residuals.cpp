@@ -11,15 +11,17 @@ std::vector<double> field_residual_norms(const MacroSystem& system, const Eigen:
   Eigen::VectorXd R = Eigen::VectorXd::Zero(system.num_dofs());
   for (int dof = 0; dof < system.num_dofs(); ++dof)
     if (c.is_master(dof)) R[dof] = f_int[dof] - f_ext[dof];
-  for (const auto& tie : c.ties()) R[tie.master] += f_int[tie.dof] - f_ext[tie.dof];
+  for (const auto& tie : c.ties())
+    if (tie.shares_equation) R[tie.master] += f_int[tie.dof] - f_ext[tie.dof];
   std::vector<double> norms;
   for (const Field& field : system.fields()) {
     const Eigen::Index o = field.offset(), n = field.size();
     double value = 0.0;
     switch (field.decl().norm) {
       case ResidualNorm::relative_to_load: {
+        // Σ R_d² by fused multiply-adds, in DOF order: the same sum on every compiler.
         double r2 = 0.0;
-        for (Eigen::Index d = o; d < o + n; ++d) r2 += std::pow(R[d], 2);
+        for (Eigen::Index d = o; d < o + n; ++d) r2 = std::fma(R[d], R[d], r2);
         const double F_ref = std::max(f_int.segment(o, n).norm(), f_ext.segment(o, n).norm());
         value = F_ref > 0 ? std::sqrt(r2) / F_ref : std::sqrt(r2);
         break;

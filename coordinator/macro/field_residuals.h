@@ -1,7 +1,8 @@
 #pragma once
 // The convergence test's measure of each field (FieldDecl::norm): the residual
 // R = f_int − f_ext condensed onto the free equations (a tied DOF's residual adds to its
-// master's; prescribed DOFs carry reactions, not residuals), then per field
+// master's; prescribed DOFs carry reactions and following DOFs dropped equations, not
+// residuals), then per field
 //   relative_to_load  ‖R‖ / max(‖f_int‖, ‖f_ext‖)   (forces; ‖R‖ if both vanish)
 //   scaled_l2         ‖R‖ / ‖s‖
 //   scaled_max        max_i |R_i| / s_i

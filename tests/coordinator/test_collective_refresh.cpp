@@ -1,4 +1,4 @@
-// The collective refresh decision (coordinator/CollectiveRefresh.h): the ski rental over
+// The collective refresh decision (coordinator/farm/CollectiveRefresh.h): the ski rental over
 // the summed costs of a model's units, per model, with commit/rollback and checkpoints.
 #include "coordinator/farm/CollectiveRefresh.h"
 

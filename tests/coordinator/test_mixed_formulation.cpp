@@ -4,6 +4,7 @@
 #include "common/fem/lagrange_tet.h"
 #include "common/materials/NeoHookean.h"
 #include "common/mesh/box_mesh.h"
+#include "coordinator/macro/IncompressibilityTerm.h"
 #include "tests/coordinator/scene_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -23,7 +24,7 @@ void expect_incompressibility_tangent_matches_fd(int order, const FormulationSpe
   RunSpec spec = read_run_spec(j, "");
   spec.formulation = f;
   spec.formulation.mixed = true;
-  const MacroSystem system = make_macro_system(spec);
+  MacroSystem system = make_macro_system(spec);
   const Field& u = system.field("displacement");
   const MacroPoints points(spec.mesh);
   std::vector<int> all(spec.mesh.num_tets());

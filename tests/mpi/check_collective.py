@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A run with unit.solver.refresh "collective" (coordinator/CollectiveRefresh.h):
+"""A run with unit.solver.refresh "collective" (coordinator/farm/CollectiveRefresh.h):
   check_collective.py REF OUT TOL GROUPS MIN_COLLECTIVE MAX_REFRESH_RATIO
 - trace_units.jsonl: in every (step, iteration) the units that refreshed are a union of
   whole GROUPS (the models' units, "0-5,6-17"): a model's units refresh together or not at

@@ -100,7 +100,7 @@ namespace fe2 {
 namespace {
 
 // Collective: the unit never refreshes on its own however stale its factor (the
-// coordinators decide, coordinator/CollectiveRefresh.h); it reports each job's excess
+// coordinators decide, coordinator/farm/CollectiveRefresh.h); it reports each job's excess
 // GMRES work and its refresh cost in the adaptive policy's own flop counts.
 TEST(RefreshPolicy, CollectiveLeavesTheDecisionToTheCoordinators) {
   RefreshPolicy p(Kind::collective, 10, 200.0);
