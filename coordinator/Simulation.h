@@ -1,5 +1,9 @@
 #pragma once
-// The macro problem and its Newton driver (paper Fig. 5), in named phases:
+// A run of the macro problem and its Newton driver (paper Fig. 5), by roles:
+//   MacroProblem   (macro/MacroProblem.h) fields, constraints, terms, state, solve
+//   PointCoupling  (PointCoupling.h)      frames, activation, jobs, Z̄, the points' answers
+//   Simulation     the Newton iteration in named phases, the time stepper, observables
+// One iteration:
 //   predict          each field's rates of the trial x (macro/TimeIntegration.h); the
 //                    prescribed increment Δx_D
 //   evaluate points  (a) Z̄_k = B̄_k ū at every integration point, rotated into the
@@ -14,12 +18,9 @@
 // Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
 // NaN, inverted element, iteration cap) is rolled back and cut in half, up to
 // newton.max_cutbacks times; then the run stops, saying where and why.
-#include "coordinator/farm/CollectiveRefresh.h"
-#include "coordinator/MacroPoints.h"
-#include "coordinator/macro/MacroSystem.h"
-#include "coordinator/macro/MacroTerm.h"
-#include "coordinator/macro/MacroSolver.h"
+#include "coordinator/PointCoupling.h"
 #include "coordinator/PointEvaluator.h"
+#include "coordinator/macro/MacroProblem.h"
 #include "common/circulation/Circulation.h"
 #include "coordinator/RunSpec.h"
 #include "coordinator/farm/Trace.h"
@@ -27,6 +28,7 @@
 #include "proto/Transport.h"
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,12 +36,6 @@
 namespace fe2 {
 
 class CavityPressureTerm;
-
-/// What the points answered at the last evaluation, for output (on the first coordinator).
-struct PointFields {
-  std::vector<Vec9> P;                ///< P̄ per point (global frame)
-  std::vector<double> active_tension; ///< T_a per point (0 where nothing contracts), Pa
-};
 
 struct FieldResidualHistory {
   std::string field;
@@ -115,19 +111,21 @@ class Simulation {
   void add_term(std::unique_ptr<MacroTerm> term);
   /// Replaces the Dirichlet values: value(dof, t) for every prescribed DOF (tests:
   /// manufactured solutions). Before the first run().
-  void set_dirichlet_values(std::function<double(int dof, double t)> value) { dirichlet_value_ = std::move(value); }
+  void set_dirichlet_values(std::function<double(int dof, double t)> value) {
+    problem_.set_prescribed_values(std::move(value));
+  }
 
   const RunSpec& spec() const { return spec_; }
-  const MacroSystem& system() const { return system_; }
+  const MacroSystem& system() const { return problem_.system(); }
   /// The fill-reducing ordering MUMPS chose for S̄ ("" before the first solve).
-  const std::string& macro_ordering() const { return macro_solver_.ordering(); }
+  const std::string& macro_ordering() const { return problem_.solver().ordering(); }
   /// Factorizations and kept-factor solves of the macro system so far.
-  const MacroSolver::Stats& macro_solver_stats() const { return macro_solver_.stats(); }
-  const MacroPoints& points() const { return points_; }
+  const MacroSolver::Stats& macro_solver_stats() const { return problem_.solver().stats(); }
+  const MacroPoints& points() const { return coupling_.points(); }
   /// Every DOF, field by field (system().fields()).
-  const Eigen::VectorXd& state() const { return x_; }
+  const Eigen::VectorXd& state() const { return problem_.x(); }
   /// The block of the field named `name`.
-  Eigen::VectorXd field_values(const std::string& name) const;
+  Eigen::VectorXd field_values(const std::string& name) const { return problem_.field_values(name); }
   /// ū alone (3 per mesh node).
   Eigen::VectorXd displacement() const { return field_values("displacement"); }
   /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
@@ -138,8 +136,8 @@ class Simulation {
   std::vector<double> element_pressure() const;
   /// Per point, the last P̄ in the global frame, gathered on coordinator 0.
   /// @note Collective.
-  PointFields gather_point_fields() const;
-  const Mat3& frame(int point) const { return Q_[point]; }
+  PointFields gather_point_fields() const { return coupling_.gather_fields(); }
+  const Mat3& frame(int point) const { return coupling_.frame(point); }
   /// Z̄ at point k of the current ū.
   Vec9 displacement_gradient(int point) const;
   /// Deformed volume of each cavity of the spec (in its order) at the current ū.
@@ -158,14 +156,22 @@ class Simulation {
   bool newton(int step, double t_new, double dt, StepRecord& rec);
 
  private:
-  // Phases of one Newton iteration.
-  void predict(double dt);
-  void evaluate_points(int step, int iteration, double t_new, double dt);
-  void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
+  /// One Newton iteration's residuals: each field's norm (table order), the units' max.
   struct Residual {
-    std::vector<double> fields;  ///< per field (table order): its norm
+    std::vector<double> fields;
     double micro = 0.0;          ///< max_k ‖r_k‖ / r_ref,k
   };
+  /// A kept-factor Newton that stops contracting: the next iteration refactors every unit.
+  struct StallGuard {
+    double previous = std::numeric_limits<double>::infinity();
+    /// Whether iteration `it` calls for it (`refreshed`: this one already refactored all).
+    bool stalled(int it, double measure, bool converged, bool refreshed);
+  };
+  /// One iteration (predict, evaluate points, assemble, converge, solve): true if
+  /// converged, else the correction is ready for update. @note Collective.
+  bool iterate(int step, int it, double t_new, double dt, const Eigen::VectorXd* lift, StepRecord& rec,
+               StallGuard& stall, IterationTiming& timing);
+  /// Residual norms of the assembled iteration, the same on every coordinator. @note Collective.
   Residual converge(double t_new);
   /// "displacement 1.2e-3, pressure 4.0e-9, micro 2.1e-10": for logs and errors.
   std::string describe(const Residual& r) const;
@@ -173,54 +179,24 @@ class Simulation {
   void account_work(StepRecord& rec) const;
   /// max over the residuals of each one's ratio to its tolerance: converged iff ≤ 1.
   double convergence_measure(const Residual& r) const;
-  void solve(int iteration);
-  void update(bool first, const Eigen::VectorXd& du_D);
-
-  MacroState state(double t_new, double dt) const;
+  /// Steps from the committed state to t_target, halving on failure (newton.max_cutbacks);
+  /// returns "" or why it gave up (the state then rolled back). @note Collective.
+  std::string advance(int step, double t_target, StepRecord& rec);
+  /// The step's observables: cavity volumes, probes, cavity pressures and flows, loads.
+  void observe(StepRecord& rec) const;
   /// time.beats: records the last beat's EDV change; true when below the tolerance.
   bool beat_is_periodic(RunResult& result) const;
-  Eigen::VectorXd dirichlet_increment(double t_new) const;
-  /// Throws the same NumericalError on every coordinator if any of them failed
-  /// (`why` non-empty on the ones that did). @note Collective.
-  void agree_on_failure(const std::string& why) const;
   void commit(double t_new, double dt);
   void rollback();
 
   const RunSpec& spec_;
-  PointEvaluator& evaluator_;
   proto::Group self_;                  ///< MPI_COMM_SELF for the one-process form
   const proto::Group& group_;
   std::vector<int> owned_elements_;
-  MacroPoints points_;
-  std::vector<int> owned_points_;      ///< this coordinator's points (= units), ascending
-  MacroSystem system_;
-  std::vector<std::unique_ptr<MacroTerm>> terms_;
-  TimeIntegration time_integration_;
-  std::vector<Eigen::VectorXd> residual_scales_;  ///< per field (MacroTerm::add_residual_scale), summed
-  MacroSolver macro_solver_;
-  bool pattern_set_ = false;
-  std::vector<Mat3> Q_;                ///< frame per point
-  std::vector<Mat9> R_;
-  std::vector<double> activation_time_;  ///< t_act per point (s)
-  CavityPressureTerm* cavity_term_ = nullptr;  ///< when a circulation is coupled
+  MacroProblem problem_;
   const Field& displacement_field_;
-  std::vector<std::vector<int>> point_dofs_;  ///< per owned point: its element's ū DOFs
-  std::function<double(int, double)> dirichlet_value_;
-  // Macro state: current and committed (every DOF; v, a of the fields with a rate).
-  Eigen::VectorXd x_, v_, a_, x_n_, v_n_, a_n_;
-  std::vector<Vec9> Zbar_, Zbar_n_;    ///< per owned point: current and committed Z̄
-  std::vector<PointResponse> responses_;
-  double t_n_ = 0.0;
-  std::vector<proto::JobInput> jobs_;
-  /// The next iteration's jobs refactor every unit whatever its policy: set when the
-  /// coupled Newton stopped contracting with kept factors (stale χ, stale A_hom).
-  bool force_refresh_ = false;
-  /// unit.solver.refresh "collective": when all units of a model refactor together.
-  CollectiveRefresh collective_;
-  std::vector<proto::JobOutput> results_;
-  std::vector<double> values_;         ///< S̄ triplet values
-  std::vector<double> du_;             ///< Newton correction on the free equations
-  std::unique_ptr<MacroAssembly> assembly_;
+  PointCoupling coupling_;
+  CavityPressureTerm* cavity_term_ = nullptr;  ///< when a circulation is coupled
   IterationHook on_iteration_;
   std::vector<proto::UnitFields> unit_fields_;
   bool stop_requested_ = false;
