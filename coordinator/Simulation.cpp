@@ -222,6 +222,7 @@ bool Simulation::iterate(int step, int it, double t_new, double dt, const Eigen:
 }
 
 bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
+  problem_.prepare();
   const Eigen::VectorXd du_D = problem_.prescribed_increment(t_new);
   const bool has_du_D = du_D.squaredNorm() > 0.0;
   rec.residuals.clear();

@@ -67,6 +67,37 @@ def compare(a, b, path, rtol, out):
         out.append(f"{path}: {a!r} before, {b!r} after")
 
 
+def numbers(node, path=""):
+    """Every number with its path."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from numbers(v, f"{path}/{k}")
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from numbers(v, f"{path}/{i}")
+    elif isinstance(node, (int, float)) and not isinstance(node, bool):
+        yield path, node
+
+
+def max_relative_difference(a, b):
+    """(largest |x − y| relative to the largest |x| of the same quantity — the path with its
+    indices as wildcards, e.g. /history/*/probes/tip/* — and that path), residual histories
+    left out (they are convergence noise below the tolerance)."""
+    before, after = dict(numbers(a)), dict(numbers(b))
+    family = lambda path: re.sub(r"/\d+", "/*", path)
+    scale = {}
+    for path, x in before.items():
+        scale[family(path)] = max(scale.get(family(path), 0.0), abs(x))
+    worst = (0.0, "")
+    for path, x in before.items():
+        if path not in after or "residuals" in path or after[path] == x:
+            continue
+        s = scale[family(path)]
+        if s > 0:
+            worst = max(worst, (abs(after[path] - x) / s, path))
+    return worst
+
+
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("before")
@@ -80,6 +111,12 @@ def main(argv):
         after = normalise(json.load(f))
     diffs = []
     compare(before, after, "", args.rtol, diffs)
+    worst = max_relative_difference(before, after)
+    if worst[0] > 0:
+        print(f"largest relative difference {worst[0]:.2e} at {worst[1]}")
+    iters = [h.get("iterations") for h in before.get("history", [])], \
+            [h.get("iterations") for h in after.get("history", [])]
+    print("Newton iterations per step: " + ("identical" if iters[0] == iters[1] else "DIFFER"))
     for d in diffs[:50]:
         print(d)
     if len(diffs) > 50:

@@ -120,19 +120,37 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   const bool new_step = step != last_step_;
   last_step_ = step;
   if (coords_.rank() == 0) std::fill(planned_refresh_.begin(), planned_refresh_.end(), -1);
-  if (spec_.farm.policy == FarmOptions::Policy::cost_based) {
-    // Whether any coordinator has costs yet, and which models' jobs are forced to
-    // refresh, summed over the coordinators: a model's units may all live elsewhere.
-    std::vector<int64_t> known(1 + num_models_, 0);
-    known[0] = have_costs_ ? 1 : 0;
-    for (const auto& j : jobs)
-      if (j.force_refresh) known[1 + model_of_point_[j.unit]] = 1;
-    coords_.allreduce_sum(known.data(), static_cast<int>(known.size()));
-    if (known[0] > 0 && (spec_.farm.rebalance_at == FarmOptions::When::iteration || new_step))
-      rebalance(step, iteration, std::vector<int64_t>(known.begin() + 1, known.end()));
-  }
+  if (spec_.farm.policy == FarmOptions::Policy::cost_based) rebalance_if_due(jobs, new_step);
+  std::vector<size_t> farm_index;
+  const double t_start = dispatch(jobs, farm_index);
+  serve_until_done();
+  out.assign(jobs.size(), proto::JobOutput{});
+  const std::vector<proto::JobOutput>& farm_out = server_.results();
+  for (size_t i = 0; i < farm_out.size(); ++i) out[farm_index[i]] = farm_out[i];
+  local_->results(out);
+  const double micro_phase = wall_seconds() - t_start;
+  last_.comm1 = server_.comm1_seconds();
+  last_.comm2 = server_.comm2_seconds();
+  gather_worker_stats(step, iteration, micro_phase);
+  sum_local_points();
+  gather_costs(farm_out, step, iteration);
+}
 
-  // (a) dispatch: pure workers start pulling; this coordinator queues its units' jobs.
+void FarmEvaluator::rebalance_if_due(const std::vector<proto::JobInput>& jobs, bool new_step) {
+  // Whether any coordinator has costs yet, and which models' jobs are forced to
+  // refresh, summed over the coordinators: a model's units may all live elsewhere.
+  std::vector<int64_t> known(1 + num_models_, 0);
+  known[0] = have_costs_ ? 1 : 0;
+  for (const auto& j : jobs)
+    if (j.force_refresh) known[1 + model_of_point_[j.unit]] = 1;
+  coords_.allreduce_sum(known.data(), static_cast<int>(known.size()));
+  if (known[0] > 0 && (spec_.farm.rebalance_at == FarmOptions::When::iteration || new_step))
+    rebalance(jobs.front().step, jobs.front().iteration, std::vector<int64_t>(known.begin() + 1, known.end()));
+}
+
+double FarmEvaluator::dispatch(const std::vector<proto::JobInput>& jobs, std::vector<size_t>& farm_index) {
+  // (a) pure workers start pulling; this coordinator queues its units' jobs.
+  const int step = jobs.front().step, iteration = jobs.front().iteration;
   proto::Control go;
   go.command = proto::Command::iterate;
   go.step = step;
@@ -143,14 +161,16 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
   const double t_start = wall_seconds();
   // The jobs of local points stay here; the others are queued for their workers.
   std::vector<proto::JobInput> farm_jobs;
-  std::vector<size_t> farm_index;
   local_->begin(jobs, farm_jobs, farm_index);
   for (const auto& j : farm_jobs) last_.macro_law_jobs_sent += macro_law_[j.unit];
   std::vector<int> worker_of_job(farm_jobs.size());
   for (size_t k = 0; k < farm_jobs.size(); ++k) worker_of_job[k] = placement_[farm_jobs[k].unit];
   server_.begin(farm_jobs, worker_of_job, spec_.farm.batch);
   if (client_) client_->begin(coordinators_of(*store_, layout_.coordinator_of_unit), step, iteration);
+  return t_start;
+}
 
+void FarmEvaluator::serve_until_done() {
   // (b)–(f) serve pulls and work, until all of this coordinator's results are in and
   // this rank's own units and local points are done.
   auto client_done = [&] { return !client_ || client_->finished(); };
@@ -183,18 +203,9 @@ void FarmEvaluator::evaluate(const std::vector<proto::JobInput>& jobs,
       std::this_thread::sleep_for(std::chrono::microseconds(20));
     }
   }
-  out.assign(jobs.size(), proto::JobOutput{});
-  const std::vector<proto::JobOutput>& farm_out = server_.results();
-  for (size_t i = 0; i < farm_out.size(); ++i) out[farm_index[i]] = farm_out[i];
-  local_->results(out);
-  const double micro_phase = wall_seconds() - t_start;
-  last_.comm1 = server_.comm1_seconds();
-  last_.comm2 = server_.comm2_seconds();
-  collect_accounts(farm_out, step, iteration, micro_phase, t_start);
 }
 
-void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, int step,
-                                     int iteration, double micro_phase, double t_start) {
+void FarmEvaluator::gather_worker_stats(int step, int iteration, double micro_phase) {
   // Worker stats to rank 0 (from every worker rank, this one included).
   if (client_) {
     Bytes b;
@@ -219,6 +230,9 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
       if (trace_) trace_->worker(s, micro_phase, t0_);
     }
   }
+}
+
+void FarmEvaluator::sum_local_points() {
   // Local points, summed over the coordinators (traces): jobs and CPU evaluated in
   // place, and jobs of macro-law points sent through the farm.
   double local[3] = {static_cast<double>(local_->jobs()), local_->cpu_seconds(),
@@ -227,6 +241,9 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
   last_.local_jobs = static_cast<long long>(local[0]);
   last_.local_cpu = local[1];
   last_.macro_law_jobs_sent = static_cast<long long>(local[2]);
+}
+
+void FarmEvaluator::gather_costs(const std::vector<proto::JobOutput>& out, int step, int iteration) {
   // Per-unit costs of the farm's jobs to rank 0 (the cost model and the unit trace), as
   // a small message.
   proto::CostReport mine;
@@ -254,7 +271,6 @@ void FarmEvaluator::collect_accounts(const std::vector<proto::JobOutput>& out, i
     last_costs_at_ = {step, iteration};
   }
   have_costs_ = true;
-  (void)t_start;
 }
 
 void FarmEvaluator::commit_step() {

@@ -59,8 +59,19 @@ class FarmEvaluator final : public PointEvaluator {
   /// the units' own policies said.
   void rebalance(int step, int iteration, const std::vector<int64_t>& forced_model);
   bool next_job_refreshes(int unit, int step, int iteration) const;
-  void collect_accounts(const std::vector<proto::JobOutput>& out, int step, int iteration,
-                        double micro_phase, double t0);
+  /// farm.policy cost_based: rebalances when costs are known and it is due (every
+  /// iteration, or at a new step). @note Collective on the coordinators.
+  void rebalance_if_due(const std::vector<proto::JobInput>& jobs, bool new_step);
+  /// (a) starts the pure workers and queues this coordinator's jobs; `farm_index[i]` is
+  /// the position in `jobs` of the i-th job sent through the farm. Returns the start time.
+  double dispatch(const std::vector<proto::JobInput>& jobs, std::vector<size_t>& farm_index);
+  /// (b)–(f) serves pulls and works until this coordinator's results are in.
+  void serve_until_done();
+  /// The iteration's accounts for the traces and the cost model, on coordinator 0:
+  /// every worker rank's stats, the local points' work, each farm job's cost.
+  void gather_worker_stats(int step, int iteration, double micro_phase);
+  void sum_local_points();
+  void gather_costs(const std::vector<proto::JobOutput>& out, int step, int iteration);
 
   proto::Transport& transport_;
   const proto::Group& coords_;

@@ -52,7 +52,8 @@ MacroState MacroProblem::state(double t_new, double dt) const {
   return s;
 }
 
-void MacroProblem::declare_pattern() {
+void MacroProblem::prepare() {
+  if (pattern_set_) return;
   for (auto& term : terms_) term->declare(system_);
   values_.assign(system_.rows().size(), 0.0);
   solver_.set_pattern(system_.rows(), system_.cols());
@@ -70,7 +71,7 @@ void MacroProblem::declare_pattern() {
 }
 
 void MacroProblem::assemble(double t_new, double dt, const Eigen::VectorXd* lift) {
-  if (!pattern_set_) declare_pattern();
+  FE2_CHECK(pattern_set_, "MacroProblem::assemble before prepare()");
   assembly_->clear();
   assembly_->set_lift(lift);
   const MacroState s = state(t_new, dt);

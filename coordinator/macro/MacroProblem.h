@@ -46,8 +46,10 @@ class MacroProblem {
   void predict(double dt);
   /// What the terms see: x, its rates and each field's ∂v/∂x, ∂a/∂x.
   MacroState state(double t_new, double dt) const;
+  /// Declares every term's local matrices and the pattern, once. @note Collective.
+  void prepare();
   /// (g) every term into S̄ and the residual; `lift` the first iteration's Δx_D or null.
-  /// Declares the pattern the first time. @note Collective.
+  /// @note Collective.
   void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
   /// (i) each field's residual norm (table order), the same on every coordinator.
   /// @note Collective.
@@ -67,7 +69,6 @@ class MacroProblem {
   void drop_factor() { solver_.drop_factor(); }
 
  private:
-  void declare_pattern();
 
   const RunSpec& spec_;
   const proto::Group& group_;
