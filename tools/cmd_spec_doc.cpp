@@ -1,5 +1,5 @@
 // `fe2heart spec-doc`: the reference of spec keys, printed from the spec schema
-// (common/spec/spec_schemas.cpp) that every read is checked against, so it lists
+// (common/spec/spec_schemas.cpp) that every read takes its key from, so it lists
 // every key of every branch whether or not a shipped config uses it.
 #include "common/circulation/circulation_run_spec.h"
 #include "common/spec/spec_reference.h"

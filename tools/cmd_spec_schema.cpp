@@ -1,5 +1,5 @@
 // `fe2heart spec-schema [--unit]`: the spec schema as JSON Schema 2020-12, from the same
-// declarations the reader is checked against (common/spec/spec_schemas.cpp).
+// declarations the readers read every key by (common/spec/spec_schemas.cpp).
 #include "common/spec/json_schema.h"
 #include "common/spec/spec_schemas.h"
 #include "tools/commands.h"

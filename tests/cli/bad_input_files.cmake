@@ -74,7 +74,7 @@ fe2_cli_test(cli.bad_input.duplicate_key.validate 2
              "spec file '[^']*duplicate_key[.]json': duplicate key 'E' at /models/muscle/material/E"
              ARGS validate ${FE2_CLI_BAD}/duplicate_key.json)
 fe2_cli_test(cli.bad_input.missing_region.validate 2
-             "/assign/regions/3: got region \"3\", which is not in the mesh box generator. expected one of its regions: 1, 2$"
+             "/assign/regions/3: got region \"3\", which is not in the mesh box generator; expected one of its regions [(]1, 2[)]$"
              ARGS validate ${FE2_CLI_BAD}/missing_region.json)
 fe2_cli_test(cli.validate.two_regions 0 "two_regions[.]json: OK: 12 nodes, 12 tetrahedra"
              ARGS validate ${FE2_CLI_BAD}/two_regions.json)

@@ -575,8 +575,8 @@ TEST(FileFrame, BadGmshViewsNameFileViewAndTag) {
 
 FrameFieldSpec read_frame_json(const json& frame, const TetMesh& m, const std::string& base_dir = ".") {
   const json j = {{"frame", frame}};
-  SpecNode root(j, "", nullptr, &run_spec_schema());
-  SpecNode f = root.child("frame", false, "material frame (fibre, sheet, normal)");
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode f = root.child("frame");
   FrameFieldSpec spec = read_frame_field_spec(f, m, base_dir, "");
   f.finish();
   return spec;
