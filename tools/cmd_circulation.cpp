@@ -6,7 +6,6 @@
 #include "common/circulation/circulation_run.h"
 #include "common/circulation/circulation_run_spec.h"
 #include "common/io/atomic_file.h"
-#include "common/spec/json_schema.h"
 #include "tools/commands.h"
 
 #include <nlohmann/json.hpp>
@@ -90,13 +89,6 @@ int validate_circulation(const std::string& file) {
   const CirculationRunSpec spec = read_circulation_run_spec(read_json_file(file), file);
   fmt::print("{}: OK: circulation spec, {} steps to t = {} s; {}\n", file, spec.steps, spec.t_end,
              spec.circulation->description());
-  return 0;
-}
-
-int spec_schema_circulation() {
-  fmt::print("{}\n", to_json_schema(circulation_run_schema(), "urn:fe2heart:circulation-spec",
-                                    "fe2heart circulation spec (fe2heart circulation)")
-                          .dump(2));
   return 0;
 }
 

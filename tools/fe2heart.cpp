@@ -62,13 +62,14 @@ int main(int argc, char** argv) {
 
   auto* c_doc = app.add_subcommand("spec-doc", "every spec key with its type, default, range and "
                                                "help, from the spec schema the reader checks");
-  bool schema_unit = false;
   auto* c_schema = app.add_subcommand("spec-schema", "the spec schema as JSON Schema 2020-12 "
                                                      "(for editors and validators)");
-  c_schema->add_flag("--unit", schema_unit, "the schema of unit specs (default: run specs)");
-  bool schema_circulation = false;
-  c_schema->add_flag("--circulation", schema_circulation,
-                     "the schema of standalone circulation specs (fe2heart circulation)");
+  std::string schema_kind = "run";
+  for (const auto& k : fe2::cli::spec_kinds())
+    if (std::string(k.name) != "run")
+      c_schema->add_flag_callback("--" + std::string(k.name), [&schema_kind, name = std::string(k.name)] {
+        schema_kind = name;
+      }, fmt::format("the schema of {} (default: run specs)", k.heading));
 
   fe2::cli::CirculationOptions circulation;
   auto* c_circulation = app.add_subcommand(
@@ -199,8 +200,7 @@ int main(int argc, char** argv) {
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);
     else if (*c_doc) rc = fe2::cli::spec_doc();
-    else if (*c_schema && schema_circulation) rc = fe2::cli::spec_schema_circulation();
-    else if (*c_schema) rc = fe2::cli::spec_schema(schema_unit);
+    else if (*c_schema) rc = fe2::cli::spec_schema(schema_kind);
     else if (*c_circulation) rc = fe2::cli::circulation(circulation);
     else if (*c_study) rc = fe2::cli::study(study);
   } catch (const fe2::Error& e) {

@@ -199,6 +199,13 @@ Schema optional(Schema s) {
   return n;
 }
 
+Schema required(Schema s) {
+  auto n = std::make_shared<SchemaNode>(*s);
+  n->required = true;
+  n->def.reset();
+  return n;
+}
+
 Schema defined(std::string name, Schema s) {
   auto n = std::make_shared<SchemaNode>(*s);
   n->definition = std::move(name);

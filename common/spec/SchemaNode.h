@@ -84,6 +84,8 @@ Schema array(bool required, std::string help, Schema element, int min_items = 0)
 Schema custom(std::string type, std::string help, json json_schema);
 /// A present-or-absent key without a default (e.g. one of two alternatives).
 Schema optional(Schema s);
+/// `s` as a key that must be present (a custom value without a default).
+Schema required(Schema s);
 /// `s` as a shared definition named `name` (JSON Schema $defs; its own spec-doc section).
 Schema defined(std::string name, Schema s);
 /// `s` with `exactly_one_of` these keys present.
