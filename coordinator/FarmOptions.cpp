@@ -24,8 +24,7 @@ FarmOptions::Policy FarmOptions::policy_of(const std::string& name) {
   const auto& n = policy_names();
   for (size_t i = 0; i < n.size(); ++i)
     if (n[i] == name) return static_cast<Policy>(i);
-  throw InputError(fmt::format("placement policy '{}': expected one of {}", name,
-                               fmt::join(n, ", ")));
+  throw InputError(fmt::format("placement policy '{}': expected {}", name, known_names("one of", name, n)));
 }
 
 const char* FarmOptions::name_of(Policy p) {

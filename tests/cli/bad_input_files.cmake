@@ -90,9 +90,9 @@ foreach(fault "unit=x" "unit=1,kind=stall_forever" "unit=1,steps=2")
   if(fault STREQUAL "unit=x")
     set(why "unit=x is not a non-negative integer")
   elseif(fault MATCHES "kind")
-    set(why "unknown kind 'stall_forever' [(]kinds: numerical, fatal[^)]*[)]")
+    set(why "unknown kind 'stall_forever'; expected a kind [(]numerical, fatal, stall, kill[)]")
   else()
-    set(why "unknown field 'steps' [(]fields: unit, step, kind[)]")
+    set(why "unknown field 'steps'; expected a field [(]unit, step, kind[)]; did you mean \"step\"[?]")
   endif()
   add_test(NAME cli.bad_input.fault_env.${id}
            COMMAND ${FE2_CLI_EXPECT} --absent ${FE2_CLI_OUT}/fault_${id} 2

@@ -104,6 +104,16 @@ TEST(SpecSchema, TheDiscriminatorPicksTheBranch) {
   EXPECT_EQ(m2.numbers("lo"), (std::vector<double>{0, 0, 0}));  // the schema's default
 }
 
+TEST(SpecNames, KnownNamesListThemAndSuggestTheNearest) {
+  EXPECT_EQ(known_names("a node set of the mesh", "tpo", {"bottom", "top"}),
+            "a node set of the mesh (bottom, top); did you mean \"top\"?");
+  EXPECT_EQ(known_names("a node set of the mesh", "left", {"bottom", "top"}), "a node set of the mesh (bottom, top)");
+  EXPECT_EQ(known_names("a cavity", "lv", {}), "a cavity (none)");
+  EXPECT_EQ(did_you_mean("3", {"1", "2"}), "");  // a region tag has no spelling
+  EXPECT_EQ(unknown_key("rtoll", "/newton", {"rtol", "max_iterations"}),
+            "unknown key 'rtoll' in /newton; did you mean 'rtol'?; known keys: rtol, max_iterations");
+}
+
 TEST(SpecSchema, ReadsRecordTheSchemaNodesTheyVisit) {
   const json j = {{"output", {{"every", 3}}}};
   SpecDoc doc;
