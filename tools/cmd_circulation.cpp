@@ -7,6 +7,7 @@
 #include "common/circulation/circulation_run_spec.h"
 #include "common/io/atomic_file.h"
 #include "tools/commands.h"
+#include "tools/output_folder.h"
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -60,6 +61,7 @@ int circulation(const CirculationOptions& o) {
   const CirculationRunSpec spec = read_circulation_run_spec(j, o.spec);
   spdlog::info("{}", spec.circulation->description());
   spdlog::info("{} steps of {:.4g} s to t = {} s", spec.steps, spec.dt(), spec.t_end);
+  refuse_earlier_output(o.out, "an fe2heart run", earlier_run_files(o.out), o.overwrite);
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));

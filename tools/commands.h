@@ -48,6 +48,7 @@ int bench_blas(bool suggested_only);
 struct CirculationOptions {
   std::string spec;
   std::string out;
+  bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
 };
 /// A 0D circulation alone with elastance ventricles (tools/cmd_circulation.cpp).
 int circulation(const CirculationOptions& o);

@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
                      "writes DIR/circulation.csv, summary.json (EDV, ESV, SV, EF, ...) and pv_loop.png");
   c_circulation->add_option("spec", circulation.spec, "circulation spec (JSON)")->required();
   c_circulation->add_option("--out", circulation.out, "output folder")->required();
+  c_circulation->add_flag("--overwrite", circulation.overwrite,
+                          "replace an earlier run in --out (without it such a folder is refused)");
 
   fe2::cli::BenchOptions bench;
   auto* c_bench = app.add_subcommand("bench", "benchmarks that print figures (not tests)");
