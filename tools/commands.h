@@ -65,8 +65,9 @@ struct SpecKind {
 };
 /// Every kind, in spec-doc's order.
 const std::vector<SpecKind>& spec_kinds();
-/// Every spec key (from the schemas): type, default or "required", range, help.
-int spec_doc();
+/// Every spec key (from the schemas): type, default or "required", range, help; as
+/// markdown tables with `markdown` (docs/spec-reference.md).
+int spec_doc(bool markdown);
 /// JSON Schema 2020-12 of the spec kind `kind` (SpecKind::name).
 int spec_schema(const std::string& kind);
 

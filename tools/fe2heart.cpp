@@ -61,7 +61,9 @@ int main(int argc, char** argv) {
   c_unit->add_option("--vtu", unit.vtu, "also write the equilibrated unit as VTU");
 
   auto* c_doc = app.add_subcommand("spec-doc", "every spec key with its type, default, range and "
-                                               "help, from the spec schema the reader checks");
+                                               "help, from the spec schemas the readers read by");
+  bool doc_markdown = false;
+  c_doc->add_flag("--markdown", doc_markdown, "as markdown tables (docs/spec-reference.md)");
   auto* c_schema = app.add_subcommand("spec-schema", "the spec schema as JSON Schema 2020-12 "
                                                      "(for editors and validators)");
   std::string schema_kind = "run";
@@ -201,7 +203,7 @@ int main(int argc, char** argv) {
     else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);
-    else if (*c_doc) rc = fe2::cli::spec_doc();
+    else if (*c_doc) rc = fe2::cli::spec_doc(doc_markdown);
     else if (*c_schema) rc = fe2::cli::spec_schema(schema_kind);
     else if (*c_circulation) rc = fe2::cli::circulation(circulation);
     else if (*c_study) rc = fe2::cli::study(study);
