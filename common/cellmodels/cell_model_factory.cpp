@@ -37,17 +37,6 @@ double read_max_substep(SpecNode& node) {
   return node.number("max_substep");
 }
 
-/// The overrides are declared only when present, so node.finish() would not suggest
-/// one for a misspelt key; this does, with the same wording.
-void refuse_unknown_land_keys(const SpecNode& node) {
-  std::vector<std::string> known = {"model", "transverse_fraction", "parameter_set", "calcium", "max_substep"};
-  for (const auto& k : land_keys()) known.emplace_back(k.key);
-  for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
-    if (std::find(known.begin(), known.end(), it.key()) != known.end()) continue;
-    throw InputError(unknown_key(it.key(), node.path(), known));
-  }
-}
-
 CellModelPtr make_land2017(SpecNode& node) {
   const std::string set = node.choice("parameter_set");
   Land2017Parameters p = set == "skinned" ? Land2017Parameters::skinned()
@@ -69,7 +58,6 @@ CellModelPtr make_land2017(SpecNode& node) {
                           p.ca50_ref + 0.2 * p.beta_1));
   const CalciumParameters calcium = read_calcium_of(node);
   const double max_substep = read_max_substep(node);
-  refuse_unknown_land_keys(node);
   return std::make_shared<const Land2017>(p, calcium, max_substep, set, overridden);
 }
 

@@ -52,17 +52,35 @@ const SchemaKeys* SchemaNode::branch(const std::string& value) const {
   return nullptr;
 }
 
+namespace {
+
+/// The branch `object` selects by its discriminator (or the discriminator's default).
+const SchemaKeys* branch_of(const SchemaNode& n, const json& object) {
+  if (n.discriminator.empty()) return nullptr;
+  std::string value;
+  auto it = object.find(n.discriminator);
+  if (it != object.end() && it->is_string()) value = it->get<std::string>();
+  else if (const SchemaNode* d = find_in(n.keys, n.discriminator); d && d->def) value = d->def->get<std::string>();
+  return n.branch(value);
+}
+
+}  // namespace
+
 const SchemaNode* SchemaNode::find(const std::string& key, const json& object) const {
   if (type == Type::map) return element.get();
   if (type != Type::object) return nullptr;
   if (const SchemaNode* n = find_in(keys, key)) return n;
-  if (discriminator.empty()) return nullptr;
-  std::string value;
-  auto it = object.find(discriminator);
-  if (it != object.end() && it->is_string()) value = it->get<std::string>();
-  else if (const SchemaNode* d = find_in(keys, discriminator); d && d->def) value = d->def->get<std::string>();
-  const SchemaKeys* b = branch(value);
+  const SchemaKeys* b = branch_of(*this, object);
   return b ? find_in(*b, key) : nullptr;
+}
+
+std::vector<std::string> SchemaNode::key_names(const json& object) const {
+  std::vector<std::string> out;
+  if (type != Type::object) return out;
+  for (const auto& [name, _] : keys) out.push_back(name);
+  if (const SchemaKeys* b = branch_of(*this, object))
+    for (const auto& [name, _] : *b) out.push_back(name);
+  return out;
 }
 
 std::string SchemaNode::type_text() const {

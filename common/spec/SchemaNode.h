@@ -54,6 +54,8 @@ struct SchemaNode {
   const SchemaNode* find(const std::string& key, const json& object) const;
   /// The keys of branch `value` (null if there is no such branch).
   const SchemaKeys* branch(const std::string& value) const;
+  /// The names of the keys `object` may have (its branch's included), in schema order.
+  std::vector<std::string> key_names(const json& object) const;
   /// "number > 0", "array of 3 integers in [1, 1000]", "object <material>", ...
   std::string type_text() const;
   /// "required", "optional" or "default <value>".

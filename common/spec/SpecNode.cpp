@@ -286,7 +286,12 @@ const json* SpecNode::declared_value(const std::string& key) {
 void SpecNode::finish() const {
   for (auto it = j_->begin(); it != j_->end(); ++it) {
     if (std::find(declared_.begin(), declared_.end(), it.key()) != declared_.end()) continue;
-    throw InputError(unknown_key(it.key(), path_, declared_));
+    // The schema's keys, not only those read: a key read only when present (an
+    // override) is still suggested for a misspelling of it.
+    std::vector<std::string> known = schema_->key_names(*j_);
+    for (const auto& d : declared_)
+      if (std::find(known.begin(), known.end(), d) == known.end()) known.push_back(d);
+    throw InputError(unknown_key(it.key(), path_, known));
   }
 }
 
