@@ -1,7 +1,7 @@
 #pragma once
 // A run spec (`fe2heart run SPEC.json`), read and checked in one place: every key is
-// declared once in the spec schema (common/spec/spec_schemas.cpp), which this reader is
-// checked against and `fe2heart spec-doc` and `spec-schema` print.
+// declared once in the spec schema (common/spec/spec_schemas.cpp), which gives this
+// reader every default, range and help text and `fe2heart spec-doc` and `spec-schema` print.
 //
 // A scene names its effects; an effect that is off allocates and assembles nothing:
 //   point models (FE² units or the macro law, per region), Dirichlet conditions,
@@ -72,6 +72,8 @@ struct FormulationSpec {
   int quadrature_degree = -1;          ///< −1: 2(order − 1)
 };
 
+/// Built by read_run_spec only: a member read from the spec has no default here (the
+/// spec schema holds it), so a zero is never an answer.
 struct RunSpec {
   std::string file;        ///< where it was read from ("" when built in code)
   std::string base_dir;    ///< relative files resolve here
@@ -93,18 +95,18 @@ struct RunSpec {
   std::vector<DirichletSpec> dirichlet;
   std::vector<PressureSpec> pressure;
 
-  double t_end = 1.0;
-  int steps = 1;
+  double t_end = 0;
+  int steps = 0;
   bool dynamic = false;    ///< Newmark-β with a mass matrix
-  double beta = 0.25, gamma = 0.5, density = 0.0;
+  double beta = 0, gamma = 0, density = 0;
   int beats = 0;                  ///< time.beats (0: t_end and steps); t_end = beats · period
   int steps_per_beat = 0;
   double periodic_tolerance = 0;  ///< stop once the EDV changes less than this over a beat
 
-  int newton_max_iterations = 20;
-  double newton_rtol = 1e-8;      ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
-  double micro_rtol = 1e-8;       ///< each unit: ‖r‖ <= micro_rtol · r_ref
-  int max_cutbacks = 4;
+  int newton_max_iterations = 0;
+  double newton_rtol = 0;         ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
+  double micro_rtol = 0;          ///< each unit: ‖r‖ <= micro_rtol · r_ref
+  int max_cutbacks = 0;
   MacroSolverOptions macro_solver;  ///< newton.macro_solver: when the macro factor is refreshed
 
   FarmOptions farm;
@@ -118,10 +120,10 @@ struct RunSpec {
   /// index in `cavities`: those cavities' pressures are unknowns of the macro system.
   std::shared_ptr<const Circulation> circulation;
   std::vector<int> coupled_cavities;
-  int output_every = 1;
+  int output_every = 0;
   int checkpoint_every = 0;       ///< output.checkpoint_every (0: only on a signal)
   bool checkpoint_factors = false;  ///< output.checkpoint_factors: units' numeric factors in the checkpoint
-  bool write_vtu = true;
+  bool write_vtu = false;
   /// output.units: points (FE² units) whose micro fields are written at output steps.
   std::vector<int> output_units;
 
@@ -135,7 +137,7 @@ struct RunSpec {
 };
 
 /// Reads and checks a spec; every problem is an InputError naming the key.
-/// Every key read is checked against run_spec_schema(); `doc`, if given, records those read.
+/// Every key is read by run_spec_schema(); `doc`, if given, records those read.
 /// `build_units` false: FE² models are only planned (PointModelSpec::plan, with their
 /// memory estimate), so they can be refused before allocation; build_unit_models builds them.
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr,

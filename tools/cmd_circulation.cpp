@@ -6,8 +6,8 @@
 #include "common/circulation/circulation_run.h"
 #include "common/circulation/circulation_run_spec.h"
 #include "common/io/atomic_file.h"
-#include "common/spec/json_schema.h"
 #include "tools/commands.h"
+#include "tools/output_folder.h"
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -61,6 +61,7 @@ int circulation(const CirculationOptions& o) {
   const CirculationRunSpec spec = read_circulation_run_spec(j, o.spec);
   spdlog::info("{}", spec.circulation->description());
   spdlog::info("{} steps of {:.4g} s to t = {} s", spec.steps, spec.dt(), spec.t_end);
+  refuse_earlier_output(o.out, "an fe2heart run", earlier_run_files(o.out), o.overwrite);
   std::error_code ec;
   std::filesystem::create_directories(o.out, ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create the folder ({})", o.out, ec.message()));
@@ -90,13 +91,6 @@ int validate_circulation(const std::string& file) {
   const CirculationRunSpec spec = read_circulation_run_spec(read_json_file(file), file);
   fmt::print("{}: OK: circulation spec, {} steps to t = {} s; {}\n", file, spec.steps, spec.t_end,
              spec.circulation->description());
-  return 0;
-}
-
-int spec_schema_circulation() {
-  fmt::print("{}\n", to_json_schema(circulation_run_schema(), "urn:fe2heart:circulation-spec",
-                                    "fe2heart circulation spec (fe2heart circulation)")
-                          .dump(2));
   return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "coordinator/output/UnitOutput.h"
 #include "coordinator/Simulation.h"
 #include "tools/commands.h"
+#include "tools/output_folder.h"
 #include "tools/memory_limit.h"
 #include "tools/stop_signal.h"
 #include "tools/study_spec.h"
@@ -227,7 +228,8 @@ int run(const RunOptions& o) {
     spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
     if (rank == 0 && !o.restart.empty()) restart = open_restart(o, spec);
     // Before anything is written; a restart continues in its own folder.
-    if (rank == 0 && !restart.in_place) check_output_folder(o.out, o.overwrite);
+    if (rank == 0 && !restart.in_place)
+      refuse_earlier_output(o.out, "an fe2heart run", earlier_run_files(o.out), o.overwrite);
     if (!o.policy.empty())
       spec.farm.policy = FarmOptions::policy_of(o.policy);
     // spec.json in the output is the spec that ran (farm-sim replays its farm section).

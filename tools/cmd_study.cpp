@@ -6,6 +6,7 @@
 #include "common/io/atomic_file.h"
 #include "coordinator/RunSpec.h"
 #include "tools/commands.h"
+#include "tools/output_folder.h"
 #include "tools/study_error.h"
 #include "tools/study_spec.h"
 
@@ -399,13 +400,10 @@ int study(const StudyOptions& o) {
 
   // The output folder: an earlier study is refused without --overwrite, before anything is written.
   std::error_code ec;
-  if (fs::exists(o.out, ec) && !fs::is_directory(o.out, ec))
-    throw InputError(fmt::format("--out '{}' exists and is not a folder; expected a folder for the study", o.out));
-  if (!o.overwrite && !o.resume &&
-      (fs::exists(fs::path(o.out) / "study.json", ec) || fs::exists(fs::path(o.out) / "variants", ec)))
-    throw InputError(fmt::format("--out '{}' already holds a study (study.json or variants/); use --resume to go "
-                                 "on with it, --overwrite to replace it, or another --out",
-                                 o.out));
+  std::vector<std::string> earlier;
+  for (const char* name : {"study.json", "variants"})
+    if (fs::exists(fs::path(o.out) / name, ec)) earlier.emplace_back(name);
+  refuse_earlier_output(o.out, "a study", earlier, o.overwrite, o.resume ? Resume::yes : Resume::no);
 
   check_variants(s, o.out);
   const std::string self = fs::read_symlink("/proc/self/exe").string();

@@ -1,6 +1,7 @@
 // `fe2heart trace summary|plot DIR` and `fe2heart farm-sim DIR`.
 #include "common/error.h"
 #include "common/spec/SpecNode.h"
+#include "common/spec/spec_schemas.h"
 #include "coordinator/farm/farm_sim.h"
 #include "coordinator/farm/trace_analysis.h"
 #include "tools/commands.h"
@@ -68,7 +69,7 @@ FarmOptions farm_options_of_run(const FarmSimOptions& o) {
   if (!spec.is_object())
     throw InputError(fmt::format("farm-sim: '{}': got a JSON {}, expected a run spec object",
                                  file, spec.type_name()));
-  FarmOptions f = FarmOptions::from_spec(SpecNode(spec, "").child("farm", false, "task farm"));
+  FarmOptions f = FarmOptions::from_spec(SpecNode(spec, "", run_spec_schema()).child("farm"));
   if (o.policy)
     f.policy = FarmOptions::policy_of(*o.policy);
   if (o.rebalance_at)

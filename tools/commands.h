@@ -4,6 +4,10 @@
 #include <string>
 #include <vector>
 
+namespace fe2 {
+struct SchemaNode;
+}
+
 namespace fe2::cli {
 
 struct RunOptions {
@@ -44,18 +48,28 @@ int bench_blas(bool suggested_only);
 struct CirculationOptions {
   std::string spec;
   std::string out;
+  bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
 };
 /// A 0D circulation alone with elastance ventricles (tools/cmd_circulation.cpp).
 int circulation(const CirculationOptions& o);
 /// `validate` of a standalone circulation spec.
 int validate_circulation(const std::string& spec);
-/// JSON Schema 2020-12 of standalone circulation specs (`spec-schema --circulation`).
-int spec_schema_circulation();
 
-/// Every spec key (from the schema): type, default or "required", range, help.
-int spec_doc();
-/// JSON Schema 2020-12 of a run spec, or of a unit spec with `unit`.
-int spec_schema(bool unit);
+/// A kind of spec file and its schema (what spec-doc and spec-schema print).
+struct SpecKind {
+  const char* name;     ///< "run", "unit", "circulation", "study" (spec-schema --NAME)
+  const char* heading;  ///< spec-doc's section title
+  const SchemaNode* schema;
+  const char* id;       ///< JSON Schema $id
+  const char* title;
+};
+/// Every kind, in spec-doc's order.
+const std::vector<SpecKind>& spec_kinds();
+/// Every spec key (from the schemas): type, default or "required", range, help; as
+/// markdown tables with `markdown` (docs/spec-reference.md).
+int spec_doc(bool markdown);
+/// JSON Schema 2020-12 of the spec kind `kind` (SpecKind::name).
+int spec_schema(const std::string& kind);
 
 int trace_summary(const std::string& dir, bool as_json);
 int trace_plot(const std::string& dir, const std::string& out);

@@ -61,14 +61,17 @@ int main(int argc, char** argv) {
   c_unit->add_option("--vtu", unit.vtu, "also write the equilibrated unit as VTU");
 
   auto* c_doc = app.add_subcommand("spec-doc", "every spec key with its type, default, range and "
-                                               "help, from the spec schema the reader checks");
-  bool schema_unit = false;
+                                               "help, from the spec schemas the readers read by");
+  bool doc_markdown = false;
+  c_doc->add_flag("--markdown", doc_markdown, "as markdown tables (docs/spec-reference.md)");
   auto* c_schema = app.add_subcommand("spec-schema", "the spec schema as JSON Schema 2020-12 "
                                                      "(for editors and validators)");
-  c_schema->add_flag("--unit", schema_unit, "the schema of unit specs (default: run specs)");
-  bool schema_circulation = false;
-  c_schema->add_flag("--circulation", schema_circulation,
-                     "the schema of standalone circulation specs (fe2heart circulation)");
+  std::string schema_kind = "run";
+  for (const auto& k : fe2::cli::spec_kinds())
+    if (std::string(k.name) != "run")
+      c_schema->add_flag_callback("--" + std::string(k.name), [&schema_kind, name = std::string(k.name)] {
+        schema_kind = name;
+      }, fmt::format("the schema of {} (default: run specs)", k.heading));
 
   fe2::cli::CirculationOptions circulation;
   auto* c_circulation = app.add_subcommand(
@@ -76,6 +79,8 @@ int main(int argc, char** argv) {
                      "writes DIR/circulation.csv, summary.json (EDV, ESV, SV, EF, ...) and pv_loop.png");
   c_circulation->add_option("spec", circulation.spec, "circulation spec (JSON)")->required();
   c_circulation->add_option("--out", circulation.out, "output folder")->required();
+  c_circulation->add_flag("--overwrite", circulation.overwrite,
+                          "replace an earlier run in --out (without it such a folder is refused)");
 
   fe2::cli::BenchOptions bench;
   auto* c_bench = app.add_subcommand("bench", "benchmarks that print figures (not tests)");
@@ -198,9 +203,8 @@ int main(int argc, char** argv) {
     else if (*c_trace_summary) rc = fe2::cli::trace_summary(trace_dir, trace_json);
     else if (*c_trace_plot) rc = fe2::cli::trace_plot(trace_dir, plot_out);
     else if (*c_sim) rc = fe2::cli::farm_sim(sim);
-    else if (*c_doc) rc = fe2::cli::spec_doc();
-    else if (*c_schema && schema_circulation) rc = fe2::cli::spec_schema_circulation();
-    else if (*c_schema) rc = fe2::cli::spec_schema(schema_unit);
+    else if (*c_doc) rc = fe2::cli::spec_doc(doc_markdown);
+    else if (*c_schema) rc = fe2::cli::spec_schema(schema_kind);
     else if (*c_circulation) rc = fe2::cli::circulation(circulation);
     else if (*c_study) rc = fe2::cli::study(study);
   } catch (const fe2::Error& e) {

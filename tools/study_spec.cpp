@@ -1,5 +1,7 @@
 #include "tools/study_spec.h"
 
+#include "common/spec/SchemaNode.h"
+
 #include <filesystem>
 #include <map>
 #include <regex>
@@ -11,29 +13,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kKeys = {"title", "description", "base", "variants", "one_at_a_time",
-                                        "reference", "quantities", "np", "mpirun"};
-
-/// Errors of one study file, each naming the file, the key (a JSON pointer into the
-/// study file), the value and what was expected.
+/// Errors of the values a study's custom keys hold, each naming the key (a JSON pointer
+/// into the study file), the value and what was expected; read_study_spec adds the file.
 struct StudyErrors {
-  std::string file;
   [[noreturn]] void bad(const std::string& key, const json& value, const std::string& expected) const {
-    throw InputError(fmt::format("study file '{}': {}: got {}, expected {}", file, key,
-                                 value.dump(), expected));
+    throw InputError(fmt::format("{}: got {}, expected {}", key, value.dump(), expected));
   }
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw InputError(fmt::format("study file '{}': {}: {}", file, key, what));
-  }
-  void only_keys(const json& j, const std::string& where, const std::vector<std::string>& keys) const {
-    for (const auto& [k, v] : j.items())
-      if (std::find(keys.begin(), keys.end(), k) == keys.end()) {
-        const std::string near = closest_match(k, keys);
-        fail(where.empty() ? "/" : where,
-             fmt::format("unknown key '{}'{}; expected one of {}", k,
-                         near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                         fmt::join(keys, ", ")));
-      }
+    throw InputError(fmt::format("{}: {}", key, what));
   }
 };
 
@@ -118,13 +105,18 @@ void absolute_paths(json& j, const fs::path& dir) {
   }
 }
 
-void read_reference(const json& r, const fs::path& dir, const std::set<std::string>& names,
+void read_reference(SpecNode& root, const fs::path& dir, const std::set<std::string>& names,
                     const StudyErrors& err, StudySpec& s) {
+  const json* ref = root.declared_value("reference");
+  if (!ref) return;  // the finest variant
+  const json& r = *ref;
+  const std::vector<std::string> known(names.begin(), names.end());
   if (r.is_string() && r == "finest") {
     s.reference = StudySpec::Reference::finest;
   } else if (r.is_string()) {
     if (!names.count(r.get<std::string>()))
-      err.bad("/reference", r, fmt::format("\"finest\", {{\"run\": DIR}} or a variant name: {}", fmt::join(names, ", ")));
+      err.bad("/reference", r,
+              known_names("\"finest\", {\"run\": DIR} or a variant name", r.get<std::string>(), known));
     s.reference = StudySpec::Reference::variant;
     s.reference_variant = r;
   } else if (r.is_object() && r.size() == 1 && r.contains("run") && r["run"].is_string()) {
@@ -135,13 +127,14 @@ void read_reference(const json& r, const fs::path& dir, const std::set<std::stri
               fmt::format("the folder of an earlier run, holding summary.json ('{}/summary.json' does not exist)",
                           s.reference_run));
   } else {
-    err.bad("/reference", r, "\"finest\", a variant name, or {\"run\": \"DIR of an earlier run\"}");
+    err.bad("/reference", r, root.expected("reference"));
   }
 }
 
-void read_quantities(const json& j, const StudyErrors& err, StudySpec& s) {
+void read_quantities(SpecNode& root, const StudyErrors& err, StudySpec& s) {
   const auto& known = study_quantity_names();
-  if (!j.contains("quantities")) {
+  const json* given = root.declared_value("quantities");
+  if (!given) {
     // What the base scene has: probes, cavities, circulation pressures.
     if (s.base_spec.contains("probes")) s.quantities.push_back("displacement");
     if (s.base_spec.contains("cavities")) s.quantities.push_back("cavity_volumes");
@@ -151,9 +144,8 @@ void read_quantities(const json& j, const StudyErrors& err, StudySpec& s) {
                               "e.g. [\"displacement\"] with probes in the base spec");
     return;
   }
-  const json& q = j["quantities"];
-  if (!q.is_array() || q.empty())
-    err.bad("/quantities", q, "a non-empty array of quantity names or summary.json pointers");
+  const json& q = *given;
+  if (!q.is_array() || q.empty()) err.bad("/quantities", q, root.expected("quantities"));
   for (size_t i = 0; i < q.size(); ++i) {
     const std::string where = fmt::format("/quantities/{}", i);
     if (!q[i].is_string()) err.bad(where, q[i], "a string");
@@ -165,13 +157,61 @@ void read_quantities(const json& j, const StudyErrors& err, StudySpec& s) {
         err.fail(where, fmt::format("'{}' is not a JSON pointer ({})", name, e.what()));
       }
     } else if (std::find(known.begin(), known.end(), name) == known.end()) {
-      const std::string near = closest_match(name, known);
       err.bad(where, q[i],
-              fmt::format("one of {}{}, or a JSON pointer into summary.json such as \"/circulation/cavities/lv/EF\"",
-                          fmt::join(known, ", "), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
+              known_names("a quantity name", name, known) +
+                  ", or a JSON pointer into summary.json such as \"/circulation/cavities/lv/EF\"");
     }
     s.quantities.push_back(name);
   }
+}
+
+const char* const kNameHelp = "1 to 80 letters, digits or _.+=- (it names the variant's folder)";
+
+Schema make_study_spec_schema() {
+  using namespace schema;
+  using std::nullopt;
+  const json strings = {{"type", "array"}, {"minItems", 1}, {"items", {{"type", "string"}}}};
+  json quantity = {{"anyOf", {{{"enum", study_quantity_names()}}, {{"type", "string"}, {"pattern", "^/"}}}}};
+  return object(
+      true, "a study file (fe2heart study): variants of a base run spec compared with a reference",
+      {{"title", string("", "one line saying what the study compares")},
+       {"description", string("", "what the study shows and how to run it")},
+       {"base", string(nullopt, "path of the base run spec (relative to the study file)")},
+       {"variants",
+        array(false, "variants of the base, each a name and the edits that make it",
+              object(true, "a variant",
+                     {{"name", string(nullopt, kNameHelp)},
+                      {"set", required(custom("object {\"/pointer\": value}",
+                                              "what differs from the base: RFC 6901 pointers into the "
+                                              "base spec with their values ({} for the base unchanged)",
+                                              {{"type", "object"}}))}}))},
+       {"one_at_a_time",
+        custom("object {\"/pointer\": [value, ...]}",
+               "one variant per value of each pointer, named after the pointer's last key "
+               "(\"steps=4\"); with \"variants\", or instead of it",
+               {{"type", "object"}, {"additionalProperties", {{"type", "array"}, {"minItems", 1}}}})},
+       {"reference",
+        custom("\"finest\", a variant name or {\"run\": DIR}",
+               "what every variant is compared with: the finest variant (default), a named variant, "
+               "or the folder of an earlier run",
+               {{"anyOf",
+                 {{{"type", "string"}},
+                  {{"type", "object"},
+                   {"properties", {{"run", {{"type", "string"}}}}},
+                   {"required", {"run"}},
+                   {"additionalProperties", false}}}}})},
+       {"quantities",
+        custom("array of quantity names or summary.json pointers",
+               fmt::format("what is compared: {}, or JSON pointers into summary.json such as "
+                           "\"/circulation/cavities/lv/EF\"; default: what the base has (probes, "
+                           "cavities, circulation)",
+                           fmt::join(study_quantity_names(), ", ")),
+               {{"type", "array"}, {"minItems", 1}, {"items", quantity}})},
+       {"np", integer(1, Range::closed(1, 100000), "ranks per variant (or --np)")},
+       {"mpirun", custom("array of strings",
+                         "the launcher of each variant, \"{np}\" standing for its ranks; default: "
+                         "mpirun -n NP for NP > 1, the binary alone for NP = 1",
+                         strings)}});
 }
 
 }  // namespace
@@ -186,23 +226,25 @@ bool is_study_spec(const json& j) {
   return j.is_object() && j.contains("base") && (j.contains("variants") || j.contains("one_at_a_time"));
 }
 
-StudySpec read_study_spec(const std::string& file) {
+const SchemaNode& study_spec_schema() {
+  static const Schema s = make_study_spec_schema();
+  return *s;
+}
+
+namespace {
+
+StudySpec read_study(const std::string& file, SpecDoc* doc) {
   StudySpec s;
   s.file = file;
-  const StudyErrors err{file};
+  const StudyErrors err;
   const json j = read_json_file(file);
   if (!j.is_object()) err.bad("/", j, "an object with \"base\" and \"variants\"");
-  err.only_keys(j, "", kKeys);
+  SpecNode root(j, "", study_spec_schema(), doc);
   const fs::path dir = fs::path(file).parent_path();
-  if (j.contains("title")) {
-    if (!j["title"].is_string()) err.bad("/title", j["title"], "a string");
-    s.title = j["title"];
-  }
+  s.title = root.string("title");
+  root.string("description");
 
-  if (!j.contains("base"))
-    err.fail("/base", "missing; expected the path of the base run spec (relative to the study file)");
-  if (!j["base"].is_string()) err.bad("/base", j["base"], "a string: the path of the base run spec");
-  s.base = (dir / j["base"].get<std::string>()).lexically_normal().string();
+  s.base = (dir / root.string("base")).lexically_normal().string();
   try {
     s.base_spec = read_json_file(s.base);
   } catch (const InputError& e) {
@@ -214,8 +256,7 @@ StudySpec read_study_spec(const std::string& file) {
   static const std::regex name_ok("[A-Za-z0-9_.+=-]{1,80}");
   std::set<std::string> names;
   auto add = [&](const std::string& name, const json& set, const std::string& where, const std::string& set_where) {
-    if (!std::regex_match(name, name_ok))
-      err.bad(where + "/name", name, "1 to 80 letters, digits or _.+=- (it names the variant's folder)");
+    if (!std::regex_match(name, name_ok)) err.bad(where + "/name", name, kNameHelp);
     if (!names.insert(name).second) err.bad(where + "/name", name, "a name no other variant has");
     StudyVariant v{name, set, s.base_spec};
     apply_set(v.spec, s.base_spec, set, set_where, err);
@@ -223,27 +264,18 @@ StudySpec read_study_spec(const std::string& file) {
     s.variants.push_back(std::move(v));
   };
 
-  if (j.contains("variants")) {
-    const json& vs = j["variants"];
-    if (!vs.is_array()) err.bad("/variants", vs, "an array of {\"name\": ..., \"set\": {\"/pointer\": value}}");
-    for (size_t i = 0; i < vs.size(); ++i) {
-      const std::string where = fmt::format("/variants/{}", i);
-      if (!vs[i].is_object()) err.bad(where, vs[i], "an object {\"name\": ..., \"set\": {...}}");
-      err.only_keys(vs[i], where, {"name", "set"});
-      if (!vs[i].contains("name") || !vs[i]["name"].is_string())
-        err.bad(where + "/name", vs[i].value("name", json()), "a string naming the variant");
-      if (!vs[i].contains("set"))
-        err.fail(where + "/set", "missing; expected {\"/pointer\": value, ...} ({} for the base unchanged)");
-      add(vs[i]["name"], vs[i]["set"], where, where + "/set");
-    }
+  for (SpecNode& v : root.children("variants")) {
+    const std::string name = v.string("name");
+    const json* set = v.declared_value("set");  // required: never null
+    v.finish();
+    add(name, *set, v.path(), v.key_path("set"));
   }
-  if (j.contains("one_at_a_time")) {
-    const json& oat = j["one_at_a_time"];
-    if (!oat.is_object()) err.bad("/one_at_a_time", oat, "an object {\"/pointer\": [value, ...]}");
+  if (const json* oat = root.declared_value("one_at_a_time")) {
+    if (!oat->is_object()) err.bad("/one_at_a_time", *oat, root.expected("one_at_a_time"));
     // Names from the pointer's last key ("steps=4"), or its whole path if two pointers share it.
     std::map<std::string, int> last_count;
-    for (const auto& [key, values] : oat.items()) ++last_count[key.substr(key.find_last_of('/') + 1)];
-    for (const auto& [key, values] : oat.items()) {
+    for (const auto& [key, values] : oat->items()) ++last_count[key.substr(key.find_last_of('/') + 1)];
+    for (const auto& [key, values] : oat->items()) {
       const std::string where = "/one_at_a_time/" + escape_token(key);
       if (!values.is_array() || values.empty())
         err.bad(where, values, "a non-empty array of values, one variant each");
@@ -256,25 +288,28 @@ StudySpec read_study_spec(const std::string& file) {
   if (s.variants.empty())
     err.fail("/variants", "no variants; expected \"variants\" or \"one_at_a_time\" with at least one");
 
-  if (j.contains("reference")) read_reference(j["reference"], dir, names, err, s);
-  read_quantities(j, err, s);
-
-  if (j.contains("np")) {
-    const json& np = j["np"];
-    if (!np.is_number_integer() || np.get<long long>() < 1 || np.get<long long>() > 100000)
-      err.bad("/np", np, "an integer from 1 to 100000 (ranks per variant)");
-    s.np = np.get<int>();
-  }
-  if (j.contains("mpirun")) {
-    const json& m = j["mpirun"];
-    if (!m.is_array() || m.empty())
-      err.bad("/mpirun", m, "a non-empty array of strings, e.g. [\"mpirun\", \"-n\", \"{np}\"]");
-    for (const json& x : m) {
-      if (!x.is_string()) err.bad("/mpirun", m, "an array of strings, e.g. [\"mpirun\", \"-n\", \"{np}\"]");
+  read_reference(root, dir, names, err, s);
+  read_quantities(root, err, s);
+  s.np = root.integer("np");
+  if (const json* m = root.declared_value("mpirun")) {
+    if (!m->is_array() || m->empty()) err.bad("/mpirun", *m, root.expected("mpirun") + ", e.g. [\"mpirun\", \"-n\", \"{np}\"]");
+    for (const json& x : *m) {
+      if (!x.is_string()) err.bad("/mpirun", *m, root.expected("mpirun") + ", e.g. [\"mpirun\", \"-n\", \"{np}\"]");
       s.mpirun.push_back(x);
     }
   }
+  root.finish();
   return s;
+}
+
+}  // namespace
+
+StudySpec read_study_spec(const std::string& file, SpecDoc* doc) {
+  try {
+    return read_study(file, doc);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("study file '{}': {}", file, e.what()));
+  }
 }
 
 }  // namespace fe2

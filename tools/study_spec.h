@@ -10,8 +10,9 @@
 //    "quantities": ["displacement", "cavity_volumes", "/circulation/cavities/lv/EF"],
 //    "np": 1, "mpirun": ["mpirun", "-n", "{np}"]}
 //
-// Every problem is an InputError naming the study file, the key, the value and what
-// was expected; nothing here writes files.
+// Every key is declared once, in study_spec_schema(); every problem is an InputError
+// naming the study file, the key, the value and what was expected; nothing here writes
+// files.
 #include "common/spec/SpecNode.h"
 
 #include <string>
@@ -47,8 +48,12 @@ const std::vector<std::string>& study_quantity_names();
 /// Whether `j` looks like a study file (a "base" and variants) rather than a spec.
 bool is_study_spec(const json& j);
 
-/// Reads and checks a study file and builds every variant's spec (not yet validated as
-/// a run spec: cmd_study does that, naming the variant).
-StudySpec read_study_spec(const std::string& file);
+/// Reads and checks a study file by study_spec_schema() and builds every variant's spec
+/// (not yet validated as a run spec: cmd_study does that, naming the variant); `doc` as
+/// in SpecNode.
+StudySpec read_study_spec(const std::string& file, SpecDoc* doc = nullptr);
+
+/// The schema of study files (`fe2heart spec-schema --study`, spec-doc).
+const SchemaNode& study_spec_schema();
 
 }  // namespace fe2

@@ -42,56 +42,34 @@ double MicroSolverOptions::step1_rtol(double relative_residual) const {
 
 MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
   MicroSolverOptions o;
-  const std::string f = s.choice("factorization", "auto", {"cholesky", "lu", "auto"},
-                                 "factor of K: CHOLMOD LLᵀ, UMFPACK LU, or LLᵀ while K is "
-                                 "symmetric positive definite and LU otherwise");
+  const std::string f = s.choice("factorization");
   o.factorization = f == "cholesky" ? Factorization::cholesky
                     : f == "lu"     ? Factorization::lu
                                     : Factorization::automatic;
-  const std::string r = s.choice("refresh", "collective", {"every_iteration", "fixed", "adaptive", "collective"},
-                                 "when to refactor K and recompute χ: every Newton iteration; "
-                                 "at iteration 1 of every N_t-th step (paper Fig. 6); when "
-                                 "the extra GMRES work since the last refresh has cost as "
-                                 "much as a refresh (adaptive: each unit alone; collective: "
-                                 "the coordinators, for all units of this model at once)");
+  const std::string r = s.choice("refresh");
   o.refresh = r == "every_iteration" ? Refresh::every_iteration
               : r == "fixed"         ? Refresh::fixed
               : r == "adaptive"      ? Refresh::adaptive
                                      : Refresh::collective;
-  o.N_t = s.integer("N_t", 10, Range::closed(1, 1e6), "refresh period in steps (fixed policy)");
-  o.step4 = s.boolean("step4", true, "apply Eq. (11) δw = δw₁ − χ ΔZ̄ when Z̄ moves");
-  o.gmres_rtol = s.number("gmres_rtol", 1e-10, Range{0.0, 1.0, true, true},
-                          "Step 1 relative residual tolerance");
-  o.gmres_forcing = s.choice("gmres_forcing", "residual", {"constant", "residual"},
-                             "Step 1 tolerance over a Newton solve: gmres_rtol every "
-                             "iteration, or the inexact-Newton forcing η = ‖r‖/r_ref "
-                             "between gmres_rtol and gmres_forcing_max") == "constant"
+  o.N_t = s.integer("N_t");
+  o.step4 = s.boolean("step4");
+  o.gmres_rtol = s.number("gmres_rtol");
+  o.gmres_forcing = s.choice("gmres_forcing") == "constant"
                         ? Forcing::constant
                         : Forcing::residual;
-  // A spec that loosens only gmres_rtol beyond 1e-4 keeps a consistent pair.
-  o.gmres_forcing_max = s.number("gmres_forcing_max", std::max(1e-4, o.gmres_rtol),
-                                 Range{0.0, 1.0, true, true},
-                                 "loosest Step 1 tolerance of the residual forcing (default "
-                                 "1e-4, or gmres_rtol if that is larger)");
+  // A spec that loosens only gmres_rtol beyond the default keeps a consistent pair.
+  const bool forcing_max_given = s.has("gmres_forcing_max");
+  o.gmres_forcing_max = s.number("gmres_forcing_max");
+  if (!forcing_max_given) o.gmres_forcing_max = std::max(o.gmres_forcing_max, o.gmres_rtol);
   if (o.gmres_forcing_max < o.gmres_rtol)
     s.fail("gmres_forcing_max", fmt::format("at least gmres_rtol ({:g})", o.gmres_rtol));
-  o.gmres_restart = s.integer("gmres_restart", 50, Range::closed(1, 1000), "GMRES restart length");
-  o.gmres_max_iterations =
-      s.integer("gmres_max_iterations", 500, Range::closed(1, 1e6), "GMRES iteration cap");
-  const std::string precision =
-      s.choice("precision", "double", {"double", "single", "half"},
-               "precision of the factor of K (the GMRES preconditioner): double (CHOLMOD/"
-               "UMFPACK), single (half the memory) or half (the single LLᵀ kept in IEEE "
-               "binary16: a quarter); residuals and answer stay double");
+  o.gmres_restart = s.integer("gmres_restart");
+  o.gmres_max_iterations = s.integer("gmres_max_iterations");
+  const std::string precision = s.choice("precision");
   o.single_precision = precision != "double";
   o.half_storage = precision == "half";
-  o.single_factor_mumps =
-      s.choice("single_factor", "supernodal", {"supernodal", "mumps"},
-               "single-precision factor: supernodal LLᵀ on CHOLMOD's analysis (the LLᵀ kind; "
-               "LU is always MUMPS) or MUMPS (LDLᵀ/LU, optionally block low-rank)") == "mumps";
-  o.blr_tolerance = s.number("blr_tolerance", 0.0, Range{0.0, 1.0, false, true},
-                             "block low-rank threshold of the single-precision MUMPS factor "
-                             "(CNTL(7)); 0 = full rank");
+  o.single_factor_mumps = s.choice("single_factor") == "mumps";
+  o.blr_tolerance = s.number("blr_tolerance");
   if (o.half_storage && o.single_factor_mumps)
     s.fail("single_factor", "\"supernodal\" with \"precision\": \"half\" (MUMPS keeps its "
                             "factor in single precision)");
@@ -107,12 +85,11 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
   plan.path = s.path();
   plan.source = s.path();
   CellLayout c;
-  c.kind = s.choice("cell", "two_cells", {"two_cells", "homogeneous", "laminate", "mesh_file"},
-                    "cell geometry: built-in layouts or a Gmsh hex mesh");
+  c.kind = s.choice("cell");
   std::array<long long, 3> cells{};
   long long nodes = 0, elements = 0;
   if (c.kind == "mesh_file") {
-    std::filesystem::path p = s.string("mesh_file", std::nullopt, "Gmsh 4.1 hex mesh of the cell");
+    std::filesystem::path p = s.string("mesh_file");
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     plan.file_mesh = read_gmsh_hexes(p.string());
     plan.source = p.string();
@@ -126,17 +103,10 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
     const double h = std::cbrt(L.prod() / static_cast<double>(elements));
     for (int d = 0; d < 3; ++d) cells[d] = std::max<long long>(1, std::llround(L[d] / h));
   } else {
-    const auto size = s.numbers("size", 3, std::vector<double>{1.0, 0.25, 0.25},
-                                "cell edge lengths L1 (fibre), L2, L3");
+    const auto size = s.numbers("size");        // lengths > 0 (the schema)
+    const auto res = s.numbers("resolution");   // integers in [1, 1000] (the schema)
     for (int d = 0; d < 3; ++d) {
-      if (!(size[d] > 0)) s.fail("size", "three positive lengths");
       c.size[d] = size[d];
-    }
-    const auto res = s.numbers("resolution", 3, std::vector<double>{8, 4, 4},
-                               "hexahedra per axis");
-    for (int d = 0; d < 3; ++d) {
-      if (!(res[d] >= 1 && res[d] <= 1000 && res[d] == std::floor(res[d])))
-        s.fail("resolution", "three integers in [1, 1000]");
       c.resolution[d] = static_cast<int>(res[d]);
       cells[d] = c.resolution[d];
     }
@@ -144,16 +114,13 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
     nodes = (cells[0] + 1) * (cells[1] + 1) * (cells[2] + 1);
     elements = cells[0] * cells[1] * cells[2];
     if (c.kind == "laminate") {
-      c.fraction = s.number("fraction", 0.5, Range{0.0, 1.0, true, true},
-                            "volume fraction of phase a");
-      const std::string ax = s.choice("axis", "x", {"x", "y", "z"}, "layer normal");
+      c.fraction = s.number("fraction");
+      const std::string ax = s.choice("axis");
       c.axis = ax[0] - 'x';
       plan.region_names = {"a", "b"};
     } else if (c.kind == "two_cells") {
-      c.gap = s.number("gap", 0.1, Range{0.0, 0.5, false, true},
-                       "ECM gap per cell, as a fraction of L1 (0: the cells join end to end)");
-      c.cross_section = s.number("cross_section", 0.75, Range{0.0, 1.0, true, true},
-                                 "cell width as a fraction of L2 and L3");
+      c.gap = s.number("gap");
+      c.cross_section = s.number("cross_section");
       plan.region_names = {"ecm", "cell"};
     } else {
       plan.region_names = {"matrix"};
@@ -172,13 +139,13 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
                                          : fmt::format(" (fraction {})", c.fraction),
                    fit.exact[0], fit.exact[1], fit.exact[2]);
   }
-  SpecNode mats = s.child("materials", true, "one material per region, by region name");
+  SpecNode mats = s.child("materials");
   for (const auto& name : plan.region_names) {
-    SpecNode m = mats.child(name, true, "material of region '" + name + "'");
+    SpecNode m = mats.child(name);
     plan.materials.push_back(make_material(m));
   }
   mats.finish();
-  plan.options = MicroSolverOptions::from_spec(s.child("solver", false, "micro solver"));
+  plan.options = MicroSolverOptions::from_spec(s.child("solver"));
   s.finish();
   bool symmetric = true;
   for (const auto& m : plan.materials) symmetric = symmetric && m->major_symmetric();

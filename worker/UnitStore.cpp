@@ -1,6 +1,7 @@
 #include "worker/UnitStore.h"
 
 #include "common/error.h"
+#include "common/spec/SpecNode.h"
 #include "worker/unit_fields.h"
 
 #include <algorithm>
@@ -45,12 +46,13 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
       fault.step = integer(key, v);
     } else if (key == "kind") {
       if (v != "numerical" && v != "fatal" && v != "stall" && v != "kill")
-        bad(fmt::format("unknown kind '{}' (kinds: numerical, fatal, stall, kill)", v));
+        bad(fmt::format("unknown kind '{}'; expected {}", v,
+                        known_names("a kind", v, {"numerical", "fatal", "stall", "kill"})));
       fault.fatal = v == "fatal";
       fault.stall = v == "stall";
       fault.kill = v == "kill";
     } else {
-      bad(fmt::format("unknown field '{}' (fields: unit, step, kind)", key));
+      bad(fmt::format("unknown field '{}'; expected {}", key, known_names("a field", key, {"unit", "step", "kind"})));
     }
   }
   if (!has_unit) bad("no unit=K field");

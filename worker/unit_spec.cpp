@@ -1,5 +1,5 @@
 // Reading a unit spec (`fe2heart unit`); its keys are declared in
-// common/spec/spec_schemas.cpp and checked against this reader.
+// common/spec/spec_schemas.cpp, which gives this reader their defaults and ranges.
 #include "worker/unit_spec.h"
 
 #include "common/spec/spec_schemas.h"
@@ -12,10 +12,10 @@ namespace fe2::cli {
 UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bool build) {
   UnitSpec u;
   std::string base = std::filesystem::path(file).parent_path().string();
-  SpecNode root(j, "", doc, &unit_spec_schema());
-  root.string("title", "", "what this unit exploration shows");
-  root.string("description", "", "longer notes");
-  MicroModelPlan plan = MicroModel::plan(root.child("unit", true, "the micro unit"), base.empty() ? "." : base);
+  SpecNode root(j, "", unit_spec_schema(), doc);
+  root.string("title");
+  root.string("description");
+  MicroModelPlan plan = MicroModel::plan(root.child("unit"), base.empty() ? "." : base);
   // A lone unit is a model of one unit: the coordinators' collective rental is its own.
   if (plan.options.refresh == MicroSolverOptions::Refresh::collective)
     plan.options.refresh = MicroSolverOptions::Refresh::adaptive;
@@ -24,11 +24,10 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bo
     root.fail(one ? "Zbar_path" : "Zbar",
               "exactly one of 'Zbar' (9 numbers) or 'Zbar_path' (an array of 9-number arrays)");
   if (one) {
-    const auto z = root.numbers("Zbar", 9, std::nullopt, "macro displacement gradient, column-major");
+    const auto z = root.numbers("Zbar");
     u.path.push_back(Eigen::Map<const Vec9>(z.data()));
   } else {
-    const json* arr = root.declared_value("Zbar_path", "array of 9-number arrays",
-                                          "macro gradients to equilibrate in turn");
+    const json* arr = root.declared_value("Zbar_path");
     const std::string what = "a non-empty array of arrays of 9 finite numbers";
     if (!arr->is_array() || arr->empty()) root.fail("Zbar_path", what);
     for (const auto& z : *arr) {
@@ -41,9 +40,9 @@ UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc, bo
       u.path.push_back(v);
     }
   }
-  SpecNode n = root.child("newton", false, "unit Newton iterations");
-  u.rtol = n.number("rtol", 1e-10, Range{0.0, 1.0, true, true}, "‖r‖ / r_ref to reach");
-  u.max_iterations = n.integer("max_iterations", 30, Range::closed(1, 1000), "iteration cap");
+  SpecNode n = root.child("newton");
+  u.rtol = n.number("rtol");
+  u.max_iterations = n.integer("max_iterations");
   n.finish();
   root.finish();
   plan.options.newton_rtol = u.rtol;  // Step 1's forcing never solves below half of it

@@ -17,7 +17,7 @@ struct UnitSpec {
   int max_iterations = 30;
 };
 
-/// Keys are checked against unit_spec_schema(); `doc`, if given, records those read.
+/// Keys are read by unit_spec_schema(); `doc`, if given, records those read.
 /// `build` false: only the plan (validate, or a memory check before building).
 UnitSpec read_unit_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr,
                         bool build = true);

@@ -1,9 +1,23 @@
 // The "activation" object's keys, as common/activation/activation_spec.cpp reads them.
 #include "common/activation/activation_schema.h"
 
+#include "common/activation/activation_spec.h"
+
 namespace fe2 {
 
-Schema activation_schema() {
+const SchemaNode& velocity_object_schema() {
+  using namespace schema;
+  static const Schema s = object(
+      false, "conduction velocity per direction (mesh length units per second)",
+      {{"fibre", number(kDefaultVelocityFibre, Range::positive(), "velocity along the fibres")},
+       {"sheet", number(kDefaultVelocitySheet, Range::positive(), "velocity along the sheets")},
+       {"normal", number(kDefaultVelocityNormal, Range::positive(), "velocity along the sheet normals")}});
+  return *s;
+}
+
+namespace {
+
+Schema make_activation_schema() {
   using namespace schema;
   using std::nullopt;
   const json positive = {{"type", "number"}, {"exclusiveMinimum", 0}};
@@ -35,6 +49,13 @@ Schema activation_schema() {
         {{"file", string(nullopt, "activation file: a Gmsh MSH 4.1 view or CSV")},
          {"format", choice("gmsh", {"gmsh", "csv"}, "gmsh: an $ElementData view; csv: lines tag,time")},
          {"view", string("activation", "name of the Gmsh $ElementData view of activation times (s)")}}}});
+}
+
+}  // namespace
+
+Schema activation_schema() {
+  static const Schema s = make_activation_schema();
+  return s;
 }
 
 }  // namespace fe2

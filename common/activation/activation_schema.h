@@ -6,5 +6,8 @@
 namespace fe2 {
 
 Schema activation_schema();
+/// The object form of "velocity" (a custom key: a number or this object), with the
+/// defaults of an absent velocity.
+const SchemaNode& velocity_object_schema();
 
 }  // namespace fe2

@@ -1,6 +1,7 @@
 #include "common/activation/activation_spec.h"
 
 #include "common/activation/activation_file.h"
+#include "common/activation/activation_schema.h"
 #include "common/activation/eikonal.h"
 
 #include <algorithm>
@@ -12,32 +13,28 @@ namespace fe2 {
 
 namespace {
 
-const char* const kVelocityType = "number > 0 or object {fibre, sheet, normal}";
-
 struct Velocity {
-  double fibre = kDefaultVelocityFibre, sheet = kDefaultVelocitySheet, normal = kDefaultVelocityNormal;
+  double fibre = 0, sheet = 0, normal = 0;
   bool isotropic() const { return fibre == sheet && sheet == normal; }
 };
 
 Velocity read_velocity(SpecNode& node) {
+  const json* j = node.declared_value("velocity");
   Velocity v;
-  const json* j = node.declared_value(
-      "velocity", kVelocityType,
-      "conduction velocity (mesh length units per second): one number (isotropic) or "
-      "{fibre, sheet, normal}; default {670, 300, 170} mm/s (Caldwell et al. 2009)");
-  if (!j) return v;
-  if (j->is_number()) {
+  if (j && j->is_number()) {
     const double x = j->get<double>();
     if (!(std::isfinite(x) && x > 0)) node.fail("velocity", "a number > 0 (isotropic conduction velocity)");
     v.fibre = v.sheet = v.normal = x;
     return v;
   }
-  if (!j->is_object())
+  if (j && !j->is_object())
     node.fail("velocity", "a number > 0 (isotropic) or an object {\"fibre\": .., \"sheet\": .., \"normal\": ..}");
-  SpecNode o(*j, node.key_path("velocity"));
-  v.fibre = o.number("fibre", kDefaultVelocityFibre, Range::positive(), "velocity along the fibres");
-  v.sheet = o.number("sheet", kDefaultVelocitySheet, Range::positive(), "velocity along the sheets");
-  v.normal = o.number("normal", kDefaultVelocityNormal, Range::positive(), "velocity along the sheet normals");
+  // Absent: the object form's defaults.
+  static const json none = json::object();
+  SpecNode o(j ? *j : none, node.key_path("velocity"), velocity_object_schema());
+  v.fibre = o.number("fibre");
+  v.sheet = o.number("sheet");
+  v.normal = o.number("normal");
   o.finish();
   return v;
 }
@@ -69,8 +66,7 @@ int nearest_vertex(SpecNode& s, const TetMesh& mesh, const Vec3& p) {
 }
 
 std::vector<EikonalSource> read_sources(SpecNode& node, const TetMesh& mesh) {
-  std::vector<SpecNode> items =
-      node.children("sources", true, "where the front starts: named surfaces or points, each with a time");
+  std::vector<SpecNode> items = node.children("sources");
   if (items.empty()) node.fail("sources", "at least one source {\"surface\": name, \"time\": t}");
   std::vector<EikonalSource> out;
   for (SpecNode& s : items) {
@@ -78,16 +74,12 @@ std::vector<EikonalSource> read_sources(SpecNode& node, const TetMesh& mesh) {
     if (surface == point)
       s.fail(surface ? "point" : "surface",
              "exactly one of 'surface' (a named surface of the mesh) or 'point' ([x, y, z])");
-    const double time = s.number("time", 0.0, Range::non_negative(), "activation time of the source (s)");
+    const double time = s.number("time");
     if (surface) {
-      const std::string name = s.string("surface", std::nullopt, "named surface of the mesh whose vertices start");
+      const std::string name = s.string("surface");
       const auto it = mesh.faces.find(name);
       if (it == mesh.faces.end() || it->second.empty()) {
-        const std::vector<std::string> names = face_names(mesh);
-        const std::string guess = closest_match(name, names);
-        s.fail("surface", fmt::format("a named surface of the mesh ({}){}",
-                                      names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", ")),
-                                      guess.empty() ? "" : "; did you mean \"" + guess + "\"?"));
+        s.fail("surface", known_names("a named surface of the mesh", name, face_names(mesh)));
       }
       std::vector<int> vs;
       for (const auto& tri : it->second) vs.insert(vs.end(), tri.begin(), tri.end());
@@ -95,7 +87,7 @@ std::vector<EikonalSource> read_sources(SpecNode& node, const TetMesh& mesh) {
       vs.erase(std::unique(vs.begin(), vs.end()), vs.end());
       for (int v : vs) out.push_back({v, time});
     } else {
-      const auto p = s.numbers("point", 3, std::nullopt, "a point [x, y, z]: its nearest mesh vertex starts");
+      const auto p = s.numbers("point");
       out.push_back({nearest_vertex(s, mesh, Vec3(p[0], p[1], p[2])), time});
     }
     s.finish();
@@ -108,11 +100,10 @@ std::vector<EikonalSource> read_sources(SpecNode& node, const TetMesh& mesh) {
 std::shared_ptr<const ActivationField> read_activation(SpecNode& node, const TetMesh& mesh, const FrameField* frames,
                                                        const std::string& base_dir,
                                                        const std::string& gmsh_mesh_file) {
-  const std::string kind = node.choice("kind", "uniform", {"uniform", "eikonal", "file"},
-                                       "how activation times are given: one time, an eikonal front, or a file");
+  const std::string kind = node.choice("kind");
   std::shared_ptr<const ActivationField> field;
   if (kind == "uniform") {
-    const double t = node.number("time", 0.0, Range::non_negative(), "activation time of every point (s)");
+    const double t = node.number("time");
     field = std::make_shared<ActivationField>(ActivationField::uniform(t));
   } else if (kind == "eikonal") {
     const std::vector<EikonalSource> sources = read_sources(node, mesh);
@@ -133,12 +124,11 @@ std::shared_ptr<const ActivationField> read_activation(SpecNode& node, const Tet
         ActivationField::per_vertex(mesh, solve_eikonal(mesh, metric, sources)));
   } else {
     ActivationFileOptions o;
-    std::filesystem::path p = node.string("file", std::nullopt, "activation file: a Gmsh MSH 4.1 view or CSV");
+    std::filesystem::path p = node.string("file");
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     o.file = p.string();
-    o.csv = node.choice("format", "gmsh", {"gmsh", "csv"},
-                        "gmsh: an $ElementData view; csv: lines tag,time") == "csv";
-    o.view = node.string("view", "activation", "name of the Gmsh $ElementData view of activation times (s)");
+    o.csv = node.choice("format") == "csv";
+    o.view = node.string("view");
     o.mesh_file = gmsh_mesh_file;
     field = std::make_shared<ActivationField>(ActivationField::per_element(read_activation_file(mesh, o)));
   }

@@ -14,14 +14,12 @@ namespace {
 using namespace cell_keys;
 
 CalciumParameters read_calcium(SpecNode& node) {
-  const CalciumParameters d;
   CalciumParameters c;
-  const Range pos = Range::positive();
-  c.rest = node.number("rest", d.rest, pos, kRestHelp);
-  c.peak = node.number("peak", d.peak, pos, kPeakHelp);
-  c.rise = node.number("rise", d.rise, pos, kRiseHelp);
-  c.decay = node.number("decay", d.decay, pos, kDecayHelp);
-  c.period = node.number("period", d.period, Range::non_negative(), kPeriodHelp);
+  c.rest = node.number("rest");
+  c.peak = node.number("peak");
+  c.rise = node.number("rise");
+  c.decay = node.number("decay");
+  c.period = node.number("period");
   if (c.peak <= c.rest)
     node.fail("peak", fmt::format("a peak above rest = {} µM (Ca peak below rest)", c.rest));
   if (c.rise >= c.decay)
@@ -31,39 +29,22 @@ CalciumParameters read_calcium(SpecNode& node) {
 }
 
 CalciumParameters read_calcium_of(SpecNode& node) {
-  SpecNode calcium = node.child("calcium", false, kCalciumHelp);
+  SpecNode calcium = node.child("calcium");
   return read_calcium(calcium);
 }
 
 double read_max_substep(SpecNode& node) {
-  return node.number("max_substep", kMaxSubstep, Range::positive(), kMaxSubstepHelp);
-}
-
-/// The overrides are declared only when present, so node.finish() would not suggest
-/// one for a misspelt key; this does, with the same wording.
-void refuse_unknown_land_keys(const SpecNode& node) {
-  std::vector<std::string> known = {"model", "transverse_fraction", "parameter_set", "calcium", "max_substep"};
-  for (const auto& k : land_keys()) known.emplace_back(k.key);
-  for (auto it = node.raw().begin(); it != node.raw().end(); ++it) {
-    if (std::find(known.begin(), known.end(), it.key()) != known.end()) continue;
-    const std::string guess = closest_match(it.key(), known);
-    std::string list;
-    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(fmt::format("unknown key '{}' in {}{}; known keys: {}", it.key(),
-                                 node.path(), guess.empty() ? "" : "; did you mean '" + guess + "'?",
-                                 list));
-  }
+  return node.number("max_substep");
 }
 
 CellModelPtr make_land2017(SpecNode& node) {
-  const std::string set =
-      node.choice("parameter_set", parameter_sets()[0], parameter_sets(), kParameterSetHelp);
+  const std::string set = node.choice("parameter_set");
   Land2017Parameters p = set == "skinned" ? Land2017Parameters::skinned()
                                           : Land2017Parameters::intact();
   std::string overridden;
   for (const auto& k : land_keys()) {
     if (!node.has(k.key)) continue;
-    p.*k.member = node.number(k.key, std::nullopt, k.range, land_help(k));
+    p.*k.member = node.number(k.key);
     overridden += (overridden.empty() ? "" : ", ") + std::string(k.key);
   }
   // The derived rates must stay meaningful (Land2017.h).
@@ -77,16 +58,14 @@ CellModelPtr make_land2017(SpecNode& node) {
                           p.ca50_ref + 0.2 * p.beta_1));
   const CalciumParameters calcium = read_calcium_of(node);
   const double max_substep = read_max_substep(node);
-  refuse_unknown_land_keys(node);
   return std::make_shared<const Land2017>(p, calcium, max_substep, set, overridden);
 }
 
 CellModelPtr make_bcs(SpecNode& node) {
-  const BestelClementSorineParameters d;
   BestelClementSorineParameters p;
-  p.sigma_0 = node.number("sigma_0", d.sigma_0, Range::positive(), kSigma0Help);
-  p.alpha_max = node.number("alpha_max", d.alpha_max, Range::positive(), kAlphaMaxHelp);
-  p.alpha_min = node.number("alpha_min", d.alpha_min, kNegative, kAlphaMinHelp);
+  p.sigma_0 = node.number("sigma_0");
+  p.alpha_max = node.number("alpha_max");
+  p.alpha_min = node.number("alpha_min");
   const CalciumParameters calcium = read_calcium_of(node);
   const double max_substep = read_max_substep(node);
   return std::make_shared<const BestelClementSorine>(p, calcium, max_substep);
@@ -94,11 +73,11 @@ CellModelPtr make_bcs(SpecNode& node) {
 
 CellModelPtr make_constant(SpecNode& node) {
   return std::make_shared<const ConstantTension>(
-      node.number("Ta", std::nullopt, Range::non_negative(), kTaHelp));
+      node.number("Ta"));
 }
 
 CellModelPtr make_table(SpecNode& node) {
-  const json* v = node.declared_value("table", kTableType, kTableHelp);
+  const json* v = node.declared_value("table");
   const std::string expected = std::string("an ") + kTableType + " (" + kTableHelp + ")";
   if (!v || !v->is_array() || v->empty()) node.fail("table", expected);
   std::vector<std::pair<double, double>> table;
@@ -123,7 +102,7 @@ CellModelPtr make_table(SpecNode& node) {
 std::vector<std::string> cell_model_names() { return model_names(); }
 
 CellModelPtr make_cell_model(SpecNode& node) {
-  const std::string model = node.choice("model", std::nullopt, model_names(), kModelHelp);
+  const std::string model = node.choice("model");
   CellModelPtr m;
   if (model == Land2017::kName)
     m = make_land2017(node);
@@ -139,8 +118,7 @@ CellModelPtr make_cell_model(SpecNode& node) {
 
 ActiveStressSpec read_active_stress(SpecNode& node) {
   ActiveStressSpec a;
-  a.transverse_fraction =
-      node.number("transverse_fraction", 0.0, Range{0.0, 1.0, false, true}, cell_keys::kTransverseHelp);
+  a.transverse_fraction = node.number("transverse_fraction");
   a.cell = make_cell_model(node);
   return a;
 }

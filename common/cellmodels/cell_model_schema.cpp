@@ -50,10 +50,7 @@ SchemaKeys table_keys() {
                      {"minItems", 2},
                      {"maxItems", 2}};
   const json table = {{"type", "array"}, {"minItems", 1}, {"items", pair}};
-  Schema t = custom(kTableType, kTableHelp, table);
-  auto required = std::make_shared<SchemaNode>(*t);
-  required->required = true;
-  return {{"table", required}};
+  return {{"table", required(custom(kTableType, kTableHelp, table))}};
 }
 
 }  // namespace

@@ -87,9 +87,9 @@ struct Net {
   }
 };
 
-ValveParameters read_valve(SpecNode& parent, const std::string& key, const std::string& help) {
-  SpecNode node = parent.child(key, false, help);
-  const ValveParameters v = read_keys(node, default_valve(), valve_keys());
+ValveParameters read_valve(SpecNode& parent, const std::string& key) {
+  SpecNode node = parent.child(key);
+  const ValveParameters v = read_keys(node, valve_keys());
   if (v.R_closed <= v.R_open)
     node.fail("R_closed", fmt::format("a resistance above R_open = {} Pa s/mm^3 (a closed valve "
                                       "must resist more than an open one)", v.R_open));
@@ -105,30 +105,27 @@ std::string show_valve(const ValveParameters& v) {
 /// proximal junction → Z_c → compliance C → R_p → distal pressure.
 void windkessel_cavity(Net& net, SpecNode& node, const std::string& name, bool left, double period) {
   const int cav = net.cavity(name);
-  SpecNode pre = node.child("preload", false, kPreloadHelp);
-  const PreloadParameters pdef = left ? lv_preload() : rv_preload();
-  const std::string pkind = pre.choice("kind", preload_kinds()[0], preload_kinds(), kPreloadKindHelp);
+  SpecNode pre = node.child("preload");
+  const std::string pkind = pre.choice("kind");
   int source = -1;
   std::string words;
   if (pkind == "pressure") {
-    const double p = pre.number(kPreloadPressure.key, pdef.*kPreloadPressure.member,
-                                kPreloadPressure.range, kPreloadPressure.help);
+    const double p = pre.number(kPreloadPressure.key);
     source = net.fixed(name + ".preload", p);
     words = fmt::format("preload {:.4g} Pa", p);
   } else {
-    const ElastanceParameters a = read_elastance(pre, left ? left_atrium() : right_atrium(), period);
-    const PreloadParameters feed = read_keys(pre, pdef, atrium_feed_keys());
+    const ElastanceParameters a = read_elastance(pre, period);
+    const PreloadParameters feed = read_keys(pre, atrium_feed_keys());
     const int venous = net.fixed(name + ".venous", feed.p_venous);
     source = net.elastance(name + ".atrium", a, period);
     net.resistor(name + ".venous_return", venous, source, feed.R_venous);
     words = fmt::format("atrium E {:.3g}–{:.3g} Pa/mm³ fed at {:.4g} Pa", a.E_min, a.E_max, feed.p_venous);
   }
   pre.finish();
-  const ValveParameters vin = read_valve(node, "inflow_valve", kInflowValveHelp);
-  const ValveParameters vout = read_valve(node, "outflow_valve", kOutflowValveHelp);
-  SpecNode wk_node = node.child("windkessel", false, kWindkesselHelp);
-  const WindkesselParameters wk =
-      read_keys(wk_node, left ? lv_windkessel() : rv_windkessel(), windkessel_keys());
+  const ValveParameters vin = read_valve(node, "inflow_valve");
+  const ValveParameters vout = read_valve(node, "outflow_valve");
+  SpecNode wk_node = node.child("windkessel");
+  const WindkesselParameters wk = read_keys(wk_node, windkessel_keys());
   wk_node.finish();
   node.finish();
 
@@ -148,22 +145,21 @@ void windkessel_cavity(Net& net, SpecNode& node, const std::string& name, bool l
 }
 
 void make_windkessel(Net& net, SpecNode& node, double period) {
-  SpecNode cav = node.child("cavities", true, kCavitiesHelp);
-  SpecNode lv = cav.child("lv", true, kLvHelp);
+  SpecNode cav = node.child("cavities");
+  SpecNode lv = cav.child("lv");
   windkessel_cavity(net, lv, "lv", true, period);
   if (cav.has("rv")) {
-    SpecNode rv = cav.child("rv", false, kRvHelp);
+    SpecNode rv = cav.child("rv");
     windkessel_cavity(net, rv, "rv", false, period);
   } else {
-    cav.child("rv", false, kRvHelp);  // declared: rv is a known key
+    cav.child("rv");  // declared: rv is a known key
   }
   cav.finish();
 }
 
-VesselParameters read_vessels(SpecNode& parent, const std::string& key, const VesselParameters& def,
-                              const char* help) {
-  SpecNode node = parent.child(key, false, help);
-  const VesselParameters v = read_keys(node, def, vessel_keys());
+VesselParameters read_vessels(SpecNode& parent, const std::string& key) {
+  SpecNode node = parent.child(key);
+  const VesselParameters v = read_keys(node, vessel_keys());
   node.finish();
   return v;
 }
@@ -171,30 +167,30 @@ VesselParameters read_vessels(SpecNode& parent, const std::string& key, const Ve
 /// Regazzoni 2022's loop: LA → mitral → LV → aortic → AR_SYS → VEN_SYS → RA → tricuspid
 /// → RV → pulmonary → AR_PUL → VEN_PUL → LA.
 void make_closed_loop(Net& net, SpecNode& node, double period) {
-  SpecNode cav = node.child("cavities", true, kCavitiesHelp);
-  SpecNode lv_node = cav.child("lv", true, kLoopCavityHelp);
-  const ValveParameters mitral = read_valve(lv_node, "inflow_valve", kInflowValveHelp);
-  const ValveParameters aortic = read_valve(lv_node, "outflow_valve", kOutflowValveHelp);
+  SpecNode cav = node.child("cavities");
+  SpecNode lv_node = cav.child("lv");
+  const ValveParameters mitral = read_valve(lv_node, "inflow_valve");
+  const ValveParameters aortic = read_valve(lv_node, "outflow_valve");
   lv_node.finish();
   const bool rv_coupled = cav.has("rv");
-  SpecNode rv_node = cav.child("rv", false, kLoopCavityHelp);
-  const ValveParameters tricuspid = read_valve(rv_node, "inflow_valve", kInflowValveHelp);
-  const ValveParameters pulmonary_valve = read_valve(rv_node, "outflow_valve", kOutflowValveHelp);
+  SpecNode rv_node = cav.child("rv");
+  const ValveParameters tricuspid = read_valve(rv_node, "inflow_valve");
+  const ValveParameters pulmonary_valve = read_valve(rv_node, "outflow_valve");
   rv_node.finish();
   cav.finish();
-  const VesselParameters sys = read_vessels(node, "systemic", systemic(), kSystemicHelp);
-  const VesselParameters pul = read_vessels(node, "pulmonary", pulmonary(), kPulmonaryHelp);
-  SpecNode la_node = node.child("left_atrium", false, kLeftAtriumHelp);
-  const ElastanceParameters la = read_elastance(la_node, left_atrium(), period);
+  const VesselParameters sys = read_vessels(node, "systemic");
+  const VesselParameters pul = read_vessels(node, "pulmonary");
+  SpecNode la_node = node.child("left_atrium");
+  const ElastanceParameters la = read_elastance(la_node, period);
   la_node.finish();
-  SpecNode ra_node = node.child("right_atrium", false, kRightAtriumHelp);
-  const ElastanceParameters ra = read_elastance(ra_node, right_atrium(), period);
+  SpecNode ra_node = node.child("right_atrium");
+  const ElastanceParameters ra = read_elastance(ra_node, period);
   ra_node.finish();
   if (rv_coupled && node.has("right_ventricle"))
     node.fail("right_ventricle", "no right_ventricle: cavities has rv, so the wall model (or "
                                  "the elastance of `ventricles`) is the right ventricle");
-  SpecNode irv_node = node.child("right_ventricle", false, kInternalRvHelp);
-  const ElastanceParameters irv = read_elastance(irv_node, right_ventricle(), period);
+  SpecNode irv_node = node.child("right_ventricle");
+  const ElastanceParameters irv = read_elastance(irv_node, period);
   irv_node.finish();
 
   const int lv = net.cavity("lv");
@@ -225,8 +221,8 @@ void make_closed_loop(Net& net, SpecNode& node, double period) {
 
 }  // namespace
 
-ElastanceParameters read_elastance(SpecNode& node, const ElastanceParameters& def, double period) {
-  const ElastanceParameters e = read_keys(node, def, elastance_keys());
+ElastanceParameters read_elastance(SpecNode& node, double period) {
+  const ElastanceParameters e = read_keys(node, elastance_keys());
   if (e.E_max < e.E_min)
     node.fail("E_max", fmt::format("an elastance >= E_min = {} Pa/mm^3", e.E_min));
   if (e.onset >= period)
@@ -240,8 +236,8 @@ ElastanceParameters read_elastance(SpecNode& node, const ElastanceParameters& de
 }
 
 std::shared_ptr<const Circulation> make_circulation(SpecNode& node) {
-  const std::string kind = node.choice("kind", kinds()[0], kinds(), kKindHelp);
-  const double period = node.number("period", kPeriod, Range::positive(), kPeriodHelp);
+  const std::string kind = node.choice("kind");
+  const double period = node.number("period");
   Net net;
   if (kind == "windkessel") make_windkessel(net, node, period);
   else make_closed_loop(net, node, period);

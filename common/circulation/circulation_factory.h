@@ -16,8 +16,8 @@ namespace fe2 {
 std::shared_ptr<const Circulation> make_circulation(SpecNode& node);
 
 /// Reads the keys of one time-varying elastance (circulation_keys::elastance_keys())
-/// with defaults `def`, checks E_max >= E_min and that onset and T_C + T_R fit in
+/// (defaults from the node's schema), checks E_max >= E_min and that onset and T_C + T_R fit in
 /// `period` (the caller finishes the node).
-ElastanceParameters read_elastance(SpecNode& node, const ElastanceParameters& def, double period);
+ElastanceParameters read_elastance(SpecNode& node, double period);
 
 }  // namespace fe2

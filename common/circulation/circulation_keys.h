@@ -1,8 +1,9 @@
 #pragma once
 // The spec keys of the circulation, declared once for the reader
 // (circulation_factory.cpp, standalone_spec.cpp) and the schema (circulation_schema.cpp):
-// each parameter group is a table of {key, member, range, help}; reader and schema
-// loop over the same table with the same defaults, so they cannot drift apart.
+// each parameter group is a table of {key, member, range, help}; the schema builds its
+// keys from the tables and the default structs below, the reader reads the same
+// tables by that schema.
 //
 // Defaults are human, in fe2heart units (Pa, mm³, s), converted from the sources'
 // mmHg and mL (1 mmHg = 133.322 Pa, 1 mL = 1000 mm³):
@@ -43,11 +44,12 @@ struct Key {
   const char* help;
 };
 
-/// Reads every key of `keys` into a copy of `def`.
+/// Reads every key of `keys` (each default from the node's schema, which
+/// circulation_schema.cpp builds from the default structs below).
 template <class P>
-P read_keys(SpecNode& node, const P& def, const std::vector<Key<P>>& keys) {
-  P p = def;
-  for (const auto& k : keys) p.*k.member = node.number(k.key, def.*k.member, k.range, k.help);
+P read_keys(SpecNode& node, const std::vector<Key<P>>& keys) {
+  P p{};
+  for (const auto& k : keys) p.*k.member = node.number(k.key);
   return p;
 }
 

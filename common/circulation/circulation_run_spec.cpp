@@ -62,43 +62,41 @@ const SchemaNode& circulation_run_schema() {
   return *s;
 }
 
-CirculationRunSpec read_circulation_run_spec(const json& j, const std::string& file, SpecDoc* doc,
-                                             bool check_schema) {
-  SpecNode root(j, "", doc, check_schema ? &circulation_run_schema() : nullptr);
+CirculationRunSpec read_circulation_run_spec(const json& j, const std::string& file, SpecDoc* doc) {
+  SpecNode root(j, "", circulation_run_schema(), doc);
   CirculationRunSpec spec;
   try {
-    spec.title = root.string("title", "", kTitleHelp);
-    root.string("description", "", kDescriptionHelp);
-    SpecNode circ = root.child("circulation", true, kCirculationHelp);
+    spec.title = root.string("title");
+    root.string("description");
+    SpecNode circ = root.child("circulation");
     spec.circulation = make_circulation(circ);
     const double period = spec.circulation->period();
-    SpecNode ventricles = root.child("ventricles", false, kVentriclesHelp);
+    SpecNode ventricles = root.child("ventricles");
     for (const std::string name : {"lv", "rv"}) {
       const auto& names = spec.circulation->cavity_names();
       const bool cavity = std::find(names.begin(), names.end(), name) != names.end();
       if (!cavity && ventricles.has(name))
         ventricles.fail(name, "no " + name + " ventricle: the circulation has no " + name +
                                   " cavity (add it to circulation/cavities)");
-      SpecNode v = ventricles.child(name, false, name == "lv" ? kLvElastanceHelp : kRvElastanceHelp);
-      const ElastanceParameters e =
-          read_elastance(v, name == "lv" ? left_ventricle() : right_ventricle(), period);
+      SpecNode v = ventricles.child(name);
+      const ElastanceParameters e = read_elastance(v, period);
       v.finish();
       if (cavity) spec.ventricles.emplace_back(e, period);
     }
     ventricles.finish();
     FE2_CHECK(spec.ventricles.size() == spec.circulation->cavity_names().size(),
               "one ventricle per cavity");
-    SpecNode time = root.child("time", true, kTimeHelp);
+    SpecNode time = root.child("time");
     if (time.has("beats") == time.has("t_end"))
       time.fail("beats", "exactly one of beats and t_end (" + std::string(kTimeHelp) + ")");
-    spec.beats = time.has("beats") ? time.integer("beats", std::nullopt, kBeatsRange, kBeatsHelp) : 0;
-    const int per_beat = time.integer("steps_per_beat", kStepsPerBeat, kStepsRange, kStepsPerBeatHelp);
+    spec.beats = time.has("beats") ? time.integer("beats") : 0;
+    const int per_beat = time.integer("steps_per_beat");
     if (spec.beats) {
       spec.t_end = spec.beats * period;
       spec.steps = spec.beats * per_beat;
     } else {
-      spec.t_end = time.number("t_end", std::nullopt, Range::positive(), kTendHelp);
-      spec.steps = time.integer("steps", std::nullopt, kStepsRange, kStepsHelp);
+      spec.t_end = time.number("t_end");
+      spec.steps = time.integer("steps");
     }
     time.finish();
     root.finish();

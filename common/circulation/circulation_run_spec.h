@@ -28,10 +28,9 @@ struct CirculationRunSpec {
 /// without a "mesh").
 bool is_circulation_run_spec(const json& j);
 
-/// Reads and checks a standalone spec; `doc` as in SpecNode. With `check_schema` every
-/// read is checked against circulation_run_schema().
+/// Reads and checks a standalone spec by circulation_run_schema(); `doc` as in SpecNode.
 CirculationRunSpec read_circulation_run_spec(const json& j, const std::string& file,
-                                             SpecDoc* doc = nullptr, bool check_schema = true);
+                                             SpecDoc* doc = nullptr);
 
 /// The root schema of standalone circulation specs.
 const SchemaNode& circulation_run_schema();

@@ -1,6 +1,7 @@
 #include "common/fibres/RuleFrame.h"
 
 #include "common/error.h"
+#include "common/spec/SpecNode.h"
 #include "common/fibres/laplace_p1.h"
 
 #include <Eigen/Geometry>
@@ -17,11 +18,11 @@ constexpr double kDeg = M_PI / 180.0;
 const std::vector<int>& named_set(const TetMesh& mesh, const std::string& key, const std::string& name) {
   const auto it = mesh.node_sets.find(name);
   if (it == mesh.node_sets.end() || it->second.empty()) {
-    std::string known;
-    for (const auto& [n, nodes] : mesh.node_sets) known += (known.empty() ? "" : ", ") + n;
-    throw InputError(fmt::format("frame rule: '{}' = \"{}\" is not a named surface or node set of the mesh "
-                                 "(it has: {}), expected one that exists and is not empty",
-                                 key, name, known.empty() ? "none" : known));
+    std::vector<std::string> known;
+    for (const auto& [n, nodes] : mesh.node_sets) known.push_back(n);
+    throw InputError(fmt::format("frame rule: '{}' = \"{}\" is not a named surface or node set of the mesh; "
+                                 "expected {}",
+                                 key, name, known_names("a non-empty one", name, known)));
   }
   return it->second;
 }

@@ -4,8 +4,8 @@
 //   {"model": "guccione", "C": 880, "bf": 18.5, "bt": 3.58, "bfs": 1.63, "kappa": 1e5}
 //   {"model": "holzapfel_ogden", "isotropic": "full", "volumetric": "none"}
 //   {"model": "holzapfel_ogden", "active": {"model": "land2017"}, "viscosity": 100}
-// Every key is declared on the SpecNode (and checked against the <material> schema in
-// common/spec/spec_schemas.cpp) and the node is finished, so unknown keys and
+// Every key is read by the <material> schema (common/spec/spec_schemas.cpp: defaults,
+// ranges, help) and the node is finished, so unknown keys and
 // out-of-range values are InputErrors naming the key.
 #include "common/materials/Material.h"
 #include "common/spec/SpecNode.h"

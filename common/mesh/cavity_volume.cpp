@@ -1,6 +1,7 @@
 #include "common/mesh/cavity_volume.h"
 
 #include "common/error.h"
+#include "common/spec/SpecNode.h"
 
 #include <algorithm>
 #include <array>
@@ -77,8 +78,8 @@ double flux_of_position(const std::vector<Vec3>& P, std::vector<Vec3>& g) {
 [[noreturn]] void no_such_face(const TetMesh& m, const std::string& face) {
   std::vector<std::string> known;
   for (const auto& [name, _] : m.faces) known.push_back(name);
-  throw InputError(fmt::format("cavity volume: face '{}': expected a named face of the mesh ({})", face,
-                               fmt::join(known, ", ")));
+  throw InputError(fmt::format("cavity volume: face '{}': expected {}", face,
+                               known_names("a named face of the mesh", face, known)));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "common/mesh/gmsh_reader.h"
 
 #include "common/error.h"
+#include "common/spec/SpecNode.h"
 
 #include <algorithm>
 #include <charconv>
@@ -626,7 +627,7 @@ const DataView& find_view(const MshData& d, const std::string& file, GmshDataOn 
   std::vector<std::string> names;
   for (const DataView& v : d.views) {
     if (v.on_elements != elements) continue;
-    names.push_back("\"" + v.name + "\"");
+    names.push_back(v.name);
     if (v.name != name) continue;
     if (found)
       throw InputError(fmt::format("file '{}' line {}: a second {} view \"{}\" (the first is at line {}), "
@@ -635,11 +636,9 @@ const DataView& find_view(const MshData& d, const std::string& file, GmshDataOn 
     found = &v;
   }
   if (!found)
-    throw InputError(fmt::format("file '{}': no {} view named \"{}\" (its {} views: {}), expected one with "
-                                 "{} components per {}",
-                                 file, section, name, section,
-                                 names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")),
-                                 components, elements ? "element" : "node"));
+    throw InputError(fmt::format("file '{}': no {} view named \"{}\", expected one with {} components per {}: {}",
+                                 file, section, name, components, elements ? "element" : "node",
+                                 known_names("one of its views", name, names)));
   if (found->components != components)
     throw InputError(fmt::format("file '{}' line {}: {} view \"{}\" has {} components, expected {} ({})", file,
                                  found->line, section, name, found->components, components, kind));

@@ -31,10 +31,6 @@ std::string show(const json& v) {
   return v.dump();
 }
 
-bool same_range(const Range& a, const Range& b) {
-  return a.lo == b.lo && a.hi == b.hi && a.lo_open == b.lo_open && a.hi_open == b.hi_open;
-}
-
 std::shared_ptr<SchemaNode> make(SchemaNode::Type type, std::string help) {
   auto n = std::make_shared<SchemaNode>();
   n->type = type;
@@ -56,17 +52,35 @@ const SchemaKeys* SchemaNode::branch(const std::string& value) const {
   return nullptr;
 }
 
+namespace {
+
+/// The branch `object` selects by its discriminator (or the discriminator's default).
+const SchemaKeys* branch_of(const SchemaNode& n, const json& object) {
+  if (n.discriminator.empty()) return nullptr;
+  std::string value;
+  auto it = object.find(n.discriminator);
+  if (it != object.end() && it->is_string()) value = it->get<std::string>();
+  else if (const SchemaNode* d = find_in(n.keys, n.discriminator); d && d->def) value = d->def->get<std::string>();
+  return n.branch(value);
+}
+
+}  // namespace
+
 const SchemaNode* SchemaNode::find(const std::string& key, const json& object) const {
   if (type == Type::map) return element.get();
   if (type != Type::object) return nullptr;
   if (const SchemaNode* n = find_in(keys, key)) return n;
-  if (discriminator.empty()) return nullptr;
-  std::string value;
-  auto it = object.find(discriminator);
-  if (it != object.end() && it->is_string()) value = it->get<std::string>();
-  else if (const SchemaNode* d = find_in(keys, discriminator); d && d->def) value = d->def->get<std::string>();
-  const SchemaKeys* b = branch(value);
+  const SchemaKeys* b = branch_of(*this, object);
   return b ? find_in(*b, key) : nullptr;
+}
+
+std::vector<std::string> SchemaNode::key_names(const json& object) const {
+  std::vector<std::string> out;
+  if (type != Type::object) return out;
+  for (const auto& [name, _] : keys) out.push_back(name);
+  if (const SchemaKeys* b = branch_of(*this, object))
+    for (const auto& [name, _] : *b) out.push_back(name);
+  return out;
 }
 
 std::string SchemaNode::type_text() const {
@@ -78,8 +92,9 @@ std::string SchemaNode::type_text() const {
     case Type::choice: return "one of " + quoted_list(choices);
     case Type::numbers: {
       const bool bounded = std::isfinite(range.lo) || std::isfinite(range.hi);
-      const std::string what = std::string(integer_items ? "integers" : "numbers") +
-                               (bounded ? " " + range.describe() : "");
+      // fmt, not operator+: GCC 12 -O3 reports a false -Wrestrict in the concatenation.
+      const std::string what = bounded ? fmt::format("{} {}", integer_items ? "integers" : "numbers", range.describe())
+                                       : std::string(integer_items ? "integers" : "numbers");
       return size >= 0 ? fmt::format("array of {} {}", size, what) : "non-empty array of " + what;
     }
     case Type::object: return definition.empty() ? "object" : "object <" + definition + ">";
@@ -95,43 +110,6 @@ std::string SchemaNode::default_text() const {
   if (required) return "required";
   if (def) return "default " + show(*def);
   return "optional";
-}
-
-std::string SchemaNode::disagreement(const SchemaNode& reader) const {
-  const std::string mine = type_text() + ", " + default_text();
-  const std::string theirs = reader.type_text() + ", " + reader.default_text();
-  const std::string differ = fmt::format("the reader declares {}, the schema {}", theirs, mine);
-  // The reader cannot tell an object from a map of named objects, nor a fixed array
-  // of integers from one of numbers (it checks integers itself).
-  const bool same_type = type == reader.type || (reader.type == Type::object && type == Type::map);
-  if (!same_type) return differ;
-  switch (type) {
-    case Type::number:
-    case Type::integer:
-      if (!same_range(range, reader.range)) return differ;
-      break;
-    case Type::choice:
-      if (choices != reader.choices) return differ;
-      break;
-    case Type::numbers:
-      if (size != reader.size) return differ;
-      break;
-    case Type::custom:
-      if (custom_type != reader.custom_type) return differ;
-      break;
-    default:
-      break;
-  }
-  if (reader.def) {
-    if (!def || *def != *reader.def) return differ;
-  } else if (def) {
-    return differ;
-  }
-  // A value without a default is required to the reader; the schema may instead make
-  // it optional when another key decides (exactly_one_of). Containers must agree.
-  const bool container = type == Type::object || type == Type::map || type == Type::array;
-  if (container && required != reader.required) return differ;
-  return "";
 }
 
 namespace schema {
@@ -235,6 +213,13 @@ Schema custom(std::string type, std::string help, json json_schema) {
 Schema optional(Schema s) {
   auto n = std::make_shared<SchemaNode>(*s);
   n->required = false;
+  n->def.reset();
+  return n;
+}
+
+Schema required(Schema s) {
+  auto n = std::make_shared<SchemaNode>(*s);
+  n->required = true;
   n->def.reset();
   return n;
 }

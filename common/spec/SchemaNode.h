@@ -3,8 +3,8 @@
 // XSD): every key a spec may hold, with its type, default or requiredness, range and
 // help; an object with a discriminator (`kind`, `cell`, `model`) has one branch of keys
 // per value. The schema is the one source of truth:
-//  - SpecNode checks every key the reader reads against it: a key the schema lacks, or
-//    read with another type, default, range or choices, is an internal error;
+//  - SpecNode reads every key by it: the reader names the key, the schema gives its
+//    type, default, range, choices and help (a key the schema lacks is an internal error);
 //  - `fe2heart spec-doc` prints it (spec_reference.h);
 //  - `fe2heart spec-schema` emits it as JSON Schema 2020-12 (json_schema.h).
 // The schemas themselves are in spec_schemas.cpp.
@@ -54,16 +54,15 @@ struct SchemaNode {
   const SchemaNode* find(const std::string& key, const json& object) const;
   /// The keys of branch `value` (null if there is no such branch).
   const SchemaKeys* branch(const std::string& value) const;
-  /// What differs between a reader's declaration of a key and this one ("" if nothing).
-  std::string disagreement(const SchemaNode& reader) const;
+  /// The names of the keys `object` may have (its branch's included), in schema order.
+  std::vector<std::string> key_names(const json& object) const;
   /// "number > 0", "array of 3 integers in [1, 1000]", "object <material>", ...
   std::string type_text() const;
   /// "required", "optional" or "default <value>".
   std::string default_text() const;
 };
 
-/// Builders for schema tables; the arguments mirror the SpecNode accessors, so a
-/// schema entry reads like the reader's call (std::nullopt default = required).
+/// Builders for schema tables (std::nullopt default = required).
 namespace schema {
 Schema number(std::optional<double> def, Range range, std::string help);
 Schema integer(std::optional<int> def, Range range, std::string help);
@@ -87,6 +86,8 @@ Schema array(bool required, std::string help, Schema element, int min_items = 0)
 Schema custom(std::string type, std::string help, json json_schema);
 /// A present-or-absent key without a default (e.g. one of two alternatives).
 Schema optional(Schema s);
+/// `s` as a key that must be present (a custom value without a default).
+Schema required(Schema s);
 /// `s` as a shared definition named `name` (JSON Schema $defs; its own spec-doc section).
 Schema defined(std::string name, Schema s);
 /// `s` with `exactly_one_of` these keys present.

@@ -3,6 +3,7 @@
 #include "common/spec/SchemaNode.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cerrno>
 #include <cstring>
@@ -67,13 +68,33 @@ std::string closest_match(const std::string& word, const std::vector<std::string
   return best;
 }
 
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& known, char quote) {
+  // A number (a region tag) is not misspelt: the nearest digits would be a guess.
+  if (!name.empty() && std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isdigit(c); }))
+    return "";
+  const std::string guess = closest_match(name, known);
+  return guess.empty() ? "" : fmt::format("; did you mean {}{}{}?", quote, guess, quote);
+}
+
+std::string known_names(const std::string& what, const std::string& name,
+                        const std::vector<std::string>& known) {
+  return fmt::format("{} ({}){}", what, known.empty() ? std::string("none") : join(known, ", "),
+                     did_you_mean(name, known));
+}
+
+std::string unknown_key(const std::string& key, const std::string& where,
+                        const std::vector<std::string>& known) {
+  return fmt::format("unknown key '{}' in {}{}; known keys: {}", key, where.empty() ? "/" : where,
+                     did_you_mean(key, known, '\''), join(known, ", "));
+}
+
 const json& SpecNode::empty_object() {
   static const json e = json::object();
   return e;
 }
 
-SpecNode::SpecNode(const json& j, std::string path, SpecDoc* doc, const SchemaNode* schema)
-    : j_(&j), path_(std::move(path)), doc_(doc), schema_(schema) {
+SpecNode::SpecNode(const json& j, std::string path, const SchemaNode& schema, SpecDoc* doc)
+    : j_(&j), path_(std::move(path)), doc_(doc), schema_(&schema) {
   if (!j.is_object())
     throw InputError(fmt::format("{}: got {}, expected an object", path_.empty() ? "/" : path_,
                                  show(j)));
@@ -88,21 +109,66 @@ const json* SpecNode::lookup(const std::string& key) const {
   return it == j_->end() ? nullptr : &*it;
 }
 
-const SchemaNode* SpecNode::declare(const std::string& key,
-                                    const std::shared_ptr<const SchemaNode>& reader) {
-  declared_.push_back(key);
-  if (!schema_) return nullptr;
+namespace {
+
+using Type = SchemaNode::Type;
+
+/// Whether the accessor `reader` reads a value of schema type `t`.
+bool reads(const char* reader, Type t) {
+  const std::string r = reader;
+  if (r == "child") return t == Type::object || t == Type::map;
+  if (r == "children") return t == Type::array;
+  if (r == "declared_value") return t == Type::custom;
+  static const std::map<std::string, Type> scalar = {
+      {"number", Type::number}, {"integer", Type::integer}, {"boolean", Type::boolean},
+      {"string", Type::string}, {"choice", Type::choice},   {"numbers", Type::numbers}};
+  const auto it = scalar.find(r);
+  return it != scalar.end() && it->second == t;
+}
+
+/// What a key of schema `s` must hold, in the schema's words: "a number > 0 (end time)".
+std::string expected_of(const SchemaNode& s) {
+  std::string what;
+  switch (s.type) {
+    case Type::number: what = "a number " + s.range.describe(); break;
+    case Type::integer: what = "an integer " + s.range.describe(); break;
+    case Type::boolean: what = "true or false"; break;
+    case Type::string: what = "a string"; break;
+    case Type::choice: what = "one of \"" + join(s.choices, "\", \"") + "\""; break;
+    case Type::numbers: what = (s.size >= 0 ? "an " : "a ") + s.type_text(); break;
+    case Type::object: what = "an object"; break;
+    case Type::map: what = "an object of named entries"; break;
+    case Type::array: what = "an array of objects"; break;
+    case Type::custom: what = s.custom_type; break;
+  }
+  return s.help.empty() ? what : what + " (" + s.help + ")";
+}
+
+}  // namespace
+
+const SchemaNode& SpecNode::schema_of(const std::string& key, const char* reader) const {
   const SchemaNode* s = schema_->find(key, *j_);
-  const std::string why =
-      s ? s->disagreement(*reader)
-        : "the reader declares " + reader->type_text() + ", " + reader->default_text() +
-              ", the schema has no such key here";
-  if (!why.empty())
-    throw Error(fmt::format("internal error: the spec reader and the spec schema "
-                            "(common/spec/spec_schemas.cpp) disagree on {}: {}",
-                            key_path(key), why));
-  if (doc_) doc_->visited.insert(s);
+  if (!s)
+    throw Error(fmt::format("internal error: the spec reader reads {} ({}), which the spec schema "
+                            "(common/spec/spec_schemas.cpp) has no key for here",
+                            key_path(key), reader));
+  if (!reads(reader, s->type))
+    throw Error(fmt::format("internal error: the spec reader reads {} with {}(), the spec schema "
+                            "(common/spec/spec_schemas.cpp) declares it {}",
+                            key_path(key), reader, s->type_text()));
+  return *s;
+}
+
+const SchemaNode& SpecNode::declare(const std::string& key, const char* reader) {
+  const SchemaNode& s = schema_of(key, reader);
+  declared_.push_back(key);
+  if (doc_) doc_->visited.insert(&s);
   return s;
+}
+
+std::string SpecNode::expected(const std::string& key) const {
+  const SchemaNode* s = schema_->find(key, *j_);
+  return s ? expected_of(*s) : std::string("no such key");
 }
 
 void SpecNode::fail(const std::string& key, const std::string& expected) const {
@@ -111,148 +177,121 @@ void SpecNode::fail(const std::string& key, const std::string& expected) const {
                                v ? show(*v) : std::string("nothing (key missing)"), expected));
 }
 
-double SpecNode::number(const std::string& key, std::optional<double> def, Range range,
-                        const std::string& help) {
-  declare(key, schema::number(def, range, help));
-  const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, "a number " + range.describe() + " (" + help + ")");
-    return *def;
-  }
-  if (!v->is_number()) fail(key, "a number " + range.describe() + " (" + help + ")");
-  const double x = v->get<double>();
-  if (!range.contains(x)) fail(key, "a number " + range.describe() + " (" + help + ")");
-  return x;
+namespace {
+
+/// The value of `key`, or its schema default (a required or default-less key that is
+/// absent fails).
+template <class T>
+T absent_default(const SpecNode& node, const std::string& key, const SchemaNode& s) {
+  if (!s.def) node.fail(key, expected_of(s));
+  return s.def->get<T>();
 }
 
-int SpecNode::integer(const std::string& key, std::optional<int> def, Range range,
-                      const std::string& help) {
-  declare(key, schema::integer(def, range, help));
+}  // namespace
+
+double SpecNode::number(const std::string& key) {
+  const SchemaNode& s = declare(key, "number");
   const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, "an integer " + range.describe() + " (" + help + ")");
-    return *def;
-  }
-  if (!v->is_number_integer() || !range.contains(v->get<double>()))
-    fail(key, "an integer " + range.describe() + " (" + help + ")");
+  if (!v) return absent_default<double>(*this, key, s);
+  if (!v->is_number() || !s.range.contains(v->get<double>())) fail(key, expected_of(s));
+  return v->get<double>();
+}
+
+int SpecNode::integer(const std::string& key) {
+  const SchemaNode& s = declare(key, "integer");
+  const json* v = lookup(key);
+  if (!v) return absent_default<int>(*this, key, s);
+  if (!v->is_number_integer() || !s.range.contains(v->get<double>())) fail(key, expected_of(s));
   return v->get<int>();
 }
 
-bool SpecNode::boolean(const std::string& key, std::optional<bool> def, const std::string& help) {
-  declare(key, schema::boolean(def, help));
+bool SpecNode::boolean(const std::string& key) {
+  const SchemaNode& s = declare(key, "boolean");
   const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, "true or false (" + help + ")");
-    return *def;
-  }
-  if (!v->is_boolean()) fail(key, "true or false (" + help + ")");
+  if (!v) return absent_default<bool>(*this, key, s);
+  if (!v->is_boolean()) fail(key, expected_of(s));
   return v->get<bool>();
 }
 
-std::string SpecNode::string(const std::string& key, std::optional<std::string> def,
-                             const std::string& help) {
-  declare(key, schema::string(def, help));
+std::string SpecNode::string(const std::string& key) {
+  const SchemaNode& s = declare(key, "string");
   const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, "a string (" + help + ")");
-    return *def;
-  }
-  if (!v->is_string()) fail(key, "a string (" + help + ")");
+  if (!v) return absent_default<std::string>(*this, key, s);
+  if (!v->is_string()) fail(key, expected_of(s));
   return v->get<std::string>();
 }
 
-std::string SpecNode::choice(const std::string& key, std::optional<std::string> def,
-                             const std::vector<std::string>& choices, const std::string& help) {
-  const std::string allowed = "one of \"" + join(choices, "\", \"") + "\"";
-  declare(key, schema::choice(def, choices, help));
+std::string SpecNode::choice(const std::string& key) {
+  const SchemaNode& s = declare(key, "choice");
   const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, allowed + " (" + help + ")");
-    return *def;
-  }
-  if (!v->is_string()) fail(key, allowed);
-  const std::string s = v->get<std::string>();
-  if (std::find(choices.begin(), choices.end(), s) == choices.end()) {
-    const std::string guess = closest_match(s, choices);
-    fail(key, allowed + (guess.empty() ? "" : "; did you mean \"" + guess + "\"?"));
-  }
-  return s;
+  if (!v) return absent_default<std::string>(*this, key, s);
+  if (!v->is_string()) fail(key, expected_of(s));
+  const std::string c = v->get<std::string>();
+  if (std::find(s.choices.begin(), s.choices.end(), c) == s.choices.end())
+    fail(key, expected_of(s) + did_you_mean(c, s.choices));
+  return c;
 }
 
-std::vector<double> SpecNode::numbers(const std::string& key, int size,
-                                      std::optional<std::vector<double>> def,
-                                      const std::string& help) {
-  const std::string what =
-      size >= 0 ? fmt::format("an array of {} numbers", size) : "a non-empty array of numbers";
-  declare(key, schema::numbers(size, def, help));
+std::vector<double> SpecNode::numbers(const std::string& key) {
+  const SchemaNode& s = declare(key, "numbers");
   const json* v = lookup(key);
-  if (!v) {
-    if (!def) fail(key, what + " (" + help + ")");
-    return *def;
-  }
-  if (!v->is_array() || (size >= 0 && static_cast<int>(v->size()) != size) || v->empty())
-    fail(key, what + " (" + help + ")");
+  if (!v) return absent_default<std::vector<double>>(*this, key, s);
+  if (!v->is_array() || (s.size >= 0 && static_cast<int>(v->size()) != s.size) || v->empty())
+    fail(key, expected_of(s));
   std::vector<double> out;
   for (const auto& x : *v) {
-    if (!x.is_number() || !std::isfinite(x.get<double>())) fail(key, what + " (" + help + ")");
+    const bool ok = x.is_number() && std::isfinite(x.get<double>()) &&
+                    s.range.contains(x.get<double>()) &&
+                    (!s.integer_items || x.get<double>() == std::floor(x.get<double>()));
+    if (!ok) fail(key, expected_of(s));
     out.push_back(x.get<double>());
   }
   return out;
 }
 
-SpecNode SpecNode::child(const std::string& key, bool required, const std::string& help) {
-  const SchemaNode* s = declare(key, schema::object(required, help, {}));
+SpecNode SpecNode::child(const std::string& key) {
+  const SchemaNode& s = declare(key, "child");
   const json* v = lookup(key);
   if (!v) {
-    if (required) fail(key, "an object (" + help + ")");
-    return SpecNode(empty_object(), key_path(key), doc_, s);
+    if (s.required) fail(key, expected_of(s));
+    return SpecNode(empty_object(), key_path(key), s, doc_);
   }
-  if (!v->is_object()) fail(key, "an object (" + help + ")");
-  return SpecNode(*v, key_path(key), doc_, s);
+  if (!v->is_object()) fail(key, expected_of(s));
+  return SpecNode(*v, key_path(key), s, doc_);
 }
 
-std::vector<std::string> SpecNode::names(const std::string& key, const std::string& help) const {
-  const_cast<SpecNode*>(this)->declare(
-      key, schema::map(false, help, "name", schema::custom("any", "", json::object())));
-  std::vector<std::string> out;
-  const json* v = lookup(key);
-  if (!v) return out;
-  if (!v->is_object()) fail(key, "an object of named entries (" + help + ")");
-  for (auto it = v->begin(); it != v->end(); ++it) out.push_back(it.key());
-  return out;
-}
-
-std::vector<SpecNode> SpecNode::children(const std::string& key, bool required,
-                                         const std::string& help) {
-  const SchemaNode* s = declare(key, schema::array(required, help, schema::object(true, "", {})));
-  const SchemaNode* item = s ? s->element.get() : nullptr;
+std::vector<SpecNode> SpecNode::children(const std::string& key) {
+  const SchemaNode& s = declare(key, "children");
+  const SchemaNode& item = *s.element;
   std::vector<SpecNode> out;
   const json* v = lookup(key);
   if (!v) {
-    if (required) fail(key, "an array of objects (" + help + ")");
+    if (s.required) fail(key, expected_of(s));
     return out;
   }
-  if (!v->is_array()) fail(key, "an array of objects (" + help + ")");
-  if (doc_ && item && !v->empty()) doc_->visited.insert(item);
+  if (!v->is_array()) fail(key, expected_of(s));
+  if (doc_ && !v->empty()) doc_->visited.insert(&item);
   for (size_t i = 0; i < v->size(); ++i)
-    out.emplace_back((*v)[i], key_path(key) + "/" + std::to_string(i), doc_, item);
+    out.emplace_back((*v)[i], key_path(key) + "/" + std::to_string(i), item, doc_);
   return out;
 }
 
-const json* SpecNode::declared_value(const std::string& key, const std::string& type,
-                                     const std::string& help) {
-  declare(key, schema::custom(type, help, json::object()));
-  return lookup(key);
+const json* SpecNode::declared_value(const std::string& key) {
+  const SchemaNode& s = declare(key, "declared_value");
+  const json* v = lookup(key);
+  if (!v && s.required) fail(key, expected_of(s));
+  return v;
 }
 
 void SpecNode::finish() const {
   for (auto it = j_->begin(); it != j_->end(); ++it) {
     if (std::find(declared_.begin(), declared_.end(), it.key()) != declared_.end()) continue;
-    const std::string guess = closest_match(it.key(), declared_);
-    throw InputError(fmt::format("unknown key '{}' in {}{}; known keys: {}", it.key(),
-                                 path_.empty() ? "/" : path_,
-                                 guess.empty() ? "" : "; did you mean '" + guess + "'?",
-                                 join(declared_, ", ")));
+    // The schema's keys, not only those read: a key read only when present (an
+    // override) is still suggested for a misspelling of it.
+    std::vector<std::string> known = schema_->key_names(*j_);
+    for (const auto& d : declared_)
+      if (std::find(known.begin(), known.end(), d) == known.end()) known.push_back(d);
+    throw InputError(unknown_key(it.key(), path_, known));
   }
 }
 

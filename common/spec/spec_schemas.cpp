@@ -1,7 +1,7 @@
-// Every key of a run spec and of a unit spec, declared once. A reader that reads a key
-// not declared here, or with another type, default, range or choices, fails with an
-// internal error (SchemaNode.h); tests read every config and the exemplars in
-// tests/data/schema/ and require every key here to be read by some spec.
+// Every key of a run spec and of a unit spec, declared once: the readers name a key and
+// take its type, default, range and help from here (SpecNode.h); reading a key not
+// declared here, or as another type, is an internal error. Tests read every config and
+// the exemplars in tests/data/schema/ and require every key here to be read by some spec.
 #include "common/spec/spec_schemas.h"
 
 #include "common/activation/activation_schema.h"
@@ -439,5 +439,9 @@ const SchemaNode& unit_spec_schema() {
   static const Schema s = make_unit_spec_schema();
   return *s;
 }
+
+const SchemaNode& material_schema() { return *material(); }
+
+const SchemaNode& micro_unit_schema() { return *micro_unit(); }
 
 }  // namespace fe2

@@ -24,8 +24,7 @@ FarmOptions::Policy FarmOptions::policy_of(const std::string& name) {
   const auto& n = policy_names();
   for (size_t i = 0; i < n.size(); ++i)
     if (n[i] == name) return static_cast<Policy>(i);
-  throw InputError(fmt::format("placement policy '{}': expected one of {}", name,
-                               fmt::join(n, ", ")));
+  throw InputError(fmt::format("placement policy '{}': expected {}", name, known_names("one of", name, n)));
 }
 
 const char* FarmOptions::name_of(Policy p) {
@@ -34,32 +33,19 @@ const char* FarmOptions::name_of(Policy p) {
 
 FarmOptions FarmOptions::from_spec(SpecNode farm) {
   FarmOptions fo;
-  fo.coordinators = farm.integer("coordinators", 1, Range::closed(1, 1e6),
-                                 "ranks that own the macro problem (or --coordinators)");
-  fo.coordinators_work = farm.boolean("coordinators_work", true,
-                                      "coordinator ranks also hold units (paper ranks 0–63)");
-  fo.policy = policy_of(farm.choice("policy", "cost_based", policy_names(),
-                                    "unit placement: static, or rebalanced by measured cost"));
-  fo.rebalance_at = farm.choice("rebalance_at", "iteration", {"iteration", "step"},
-                                "when the cost-based policy may migrate units") == "iteration"
+  fo.coordinators = farm.integer("coordinators");
+  fo.coordinators_work = farm.boolean("coordinators_work");
+  fo.policy = policy_of(farm.choice("policy"));
+  fo.rebalance_at = farm.choice("rebalance_at") == "iteration"
                         ? FarmOptions::When::iteration
                         : FarmOptions::When::step;
-  fo.batch = farm.integer("batch", 4, Range::closed(1, 1e6), "jobs a worker pulls at once");
-  fo.min_gain = farm.number("min_gain", 0.03, Range::closed(0.0, 1.0),
-                            "least relative makespan gain worth a migration");
-  fo.tolerated_imbalance = farm.number("tolerated_imbalance", 0.05, Range::closed(0.0, 10.0),
-                                       "no rebalance while predicted max/mean load <= 1 + this");
-  fo.latency = farm.number("latency", 2e-6, Range::non_negative(),
-                           "network model: seconds per message");
-  fo.bandwidth = farm.number("bandwidth", 5e9, Range::positive(),
-                             "network model: bytes per second");
-  fo.stall_timeout = farm.number(
-      "stall_timeout", 600.0, Range::positive(),
-      "liveness limit, wall seconds: a rank that waits this long for a message "
-      "stops the job naming the silent rank; must exceed the longest wait of a "
-      "healthy run: one Newton iteration (micro phase and macro solve) plus an "
-      "output write");
-  if (const json* b = farm.declared_value("factor_memory_budget", kBudgetType, kBudgetHelp)) {
+  fo.batch = farm.integer("batch");
+  fo.min_gain = farm.number("min_gain");
+  fo.tolerated_imbalance = farm.number("tolerated_imbalance");
+  fo.latency = farm.number("latency");
+  fo.bandwidth = farm.number("bandwidth");
+  fo.stall_timeout = farm.number("stall_timeout");
+  if (const json* b = farm.declared_value("factor_memory_budget")) {
     const std::string key = farm.key_path("factor_memory_budget");
     if (b->is_string()) {
       fo.factor_memory_budget_text = b->dump();  // quoted, as in the spec
@@ -72,9 +58,7 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
     }
   }
   fo.macro_law_points =
-      farm.choice("macro_law_points", "local", {"local", "farm"},
-                  "where macro-law points are evaluated: local (by the coordinator that owns "
-                  "their element, no messages) or farm (as jobs on the workers, like FE² units)") ==
+      farm.choice("macro_law_points") ==
               "local"
           ? MacroLawPoints::local
           : MacroLawPoints::farm;

@@ -74,7 +74,7 @@ fe2_cli_test(cli.bad_input.duplicate_key.validate 2
              "spec file '[^']*duplicate_key[.]json': duplicate key 'E' at /models/muscle/material/E"
              ARGS validate ${FE2_CLI_BAD}/duplicate_key.json)
 fe2_cli_test(cli.bad_input.missing_region.validate 2
-             "/assign/regions/3: got region \"3\", which is not in the mesh box generator. expected one of its regions: 1, 2$"
+             "/assign/regions/3: got region \"3\", which is not in the mesh box generator; expected one of its regions [(]1, 2[)]$"
              ARGS validate ${FE2_CLI_BAD}/missing_region.json)
 fe2_cli_test(cli.validate.two_regions 0 "two_regions[.]json: OK: 12 nodes, 12 tetrahedra"
              ARGS validate ${FE2_CLI_BAD}/two_regions.json)
@@ -90,9 +90,9 @@ foreach(fault "unit=x" "unit=1,kind=stall_forever" "unit=1,steps=2")
   if(fault STREQUAL "unit=x")
     set(why "unit=x is not a non-negative integer")
   elseif(fault MATCHES "kind")
-    set(why "unknown kind 'stall_forever' [(]kinds: numerical, fatal[^)]*[)]")
+    set(why "unknown kind 'stall_forever'; expected a kind [(]numerical, fatal, stall, kill[)]")
   else()
-    set(why "unknown field 'steps' [(]fields: unit, step, kind[)]")
+    set(why "unknown field 'steps'; expected a field [(]unit, step, kind[)]; did you mean \"step\"[?]")
   endif()
   add_test(NAME cli.bad_input.fault_env.${id}
            COMMAND ${FE2_CLI_EXPECT} --absent ${FE2_CLI_OUT}/fault_${id} 2

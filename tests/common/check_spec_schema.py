@@ -5,8 +5,9 @@ usage: check_spec_schema.py schema|doc FE2HEART SOURCE_DIR
 
 schema:
 - both emitted documents are valid JSON Schema 2020-12;
-- every config in configs/, every exemplar in tests/data/schema/ and the CLI positive
-  controls validate against the right schema (run or unit) and pass `fe2heart validate`;
+- every config in configs/ (study-*.json included), every exemplar in tests/data/schema/
+  and the CLI positive controls validate against the right schema (run, unit,
+  circulation or study) and pass `fe2heart validate`;
 - every tests/data/schema/reject_*.json is rejected by the schema AND by `fe2heart
   validate` (exit 2), so the schema bites where the reader does;
 doc:
@@ -49,13 +50,13 @@ def load_schema(*flags):
 
 
 schemas = {"run": load_schema(), "unit": load_schema("--unit"),
-           "circulation": load_schema("--circulation")}
+           "circulation": load_schema("--circulation"), "study": load_schema("--study")}
 validators = {k: jsonschema.Draft202012Validator(s) for k, s in schemas.items()}
 
 
 def kind_of(spec):
     if "base" in spec and ("variants" in spec or "one_at_a_time" in spec):
-        return "study"  # fe2heart study: no schema; `validate` checks it and its variants
+        return "study"  # fe2heart study (tools/study_spec.h); `validate` also checks its variants
     if "ventricles" in spec or ("circulation" in spec and "mesh" not in spec):
         return "circulation"  # fe2heart circulation (common/circulation/circulation_run_spec.h)
     return "unit" if "unit" in spec and "mesh" not in spec else "run"
@@ -80,7 +81,7 @@ def check_specs():
     for path in good:
         with open(path) as f:
             spec = json.load(f)
-        errors = list(validators[kind_of(spec)].iter_errors(spec)) if kind_of(spec) != "study" else []
+        errors = list(validators[kind_of(spec)].iter_errors(spec))
         if errors:
             fail(f"{rel(path)}: the {kind_of(spec)} schema rejects it: {errors[0].message} "
                  f"at /{'/'.join(map(str, errors[0].absolute_path))}")
@@ -126,7 +127,9 @@ def check_doc():
     if doc.returncode != 0:
         fail(f"spec-doc exited {doc.returncode}")
     doc_keys = set(re.findall(r"^  \S*/([A-Za-z_0-9]+) ", doc.stdout, re.M))
-    names = property_names(schemas["run"], set()) | property_names(schemas["unit"], set())
+    names = set()
+    for schema in schemas.values():
+        property_names(schema, names)
     missing = sorted(names - doc_keys)
     if missing:
         fail(f"spec-doc has no line for these schema properties: {missing}")

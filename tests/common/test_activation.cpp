@@ -494,7 +494,7 @@ TEST(ActivationFile, CsvRoundTripsBitForBit) {
   for (int e = 0; e < m.num_tets(); ++e) times.push_back(0.001 * std::sqrt(2.0 + e) + 1.0 / 3.0);
   write_text(dir / "act.csv", csv);
   const json j = {{"kind", "file"}, {"file", "act.csv"}, {"format", "csv"}};
-  SpecNode node(j, "/activation");
+  SpecNode node(j, "/activation", *activation_schema());
   const auto f = read_activation(node, m, nullptr, dir.str(), "");
   ASSERT_EQ(f->kind(), ActivationField::Kind::per_element);
   for (int e = 0; e < m.num_tets(); ++e) EXPECT_EQ(f->at(e, kCentroid), times[e]) << e;
@@ -549,16 +549,16 @@ TEST(ActivationFile, GmshElementViewRoundTrips) {
                             "5 9\n6 0.25\n$EndElementData\n");
   const TetMesh m = read_gmsh_tets(mesh_file);
   const json j = {{"kind", "file"}, {"file", "two_tets.msh"}};
-  SpecNode node(j, "/activation");
+  SpecNode node(j, "/activation", *activation_schema());
   const auto f = read_activation(node, m, nullptr, dir.str(), mesh_file);
   EXPECT_EQ(f->at(0, kCentroid), 0.25);
   EXPECT_EQ(f->at(1, kCentroid), 0.0123456789012345678);
   // A view of another name is refused, listing the views there are.
   const json k = {{"kind", "file"}, {"file", "two_tets.msh"}, {"view", "t_act"}};
-  SpecNode other(k, "/activation");
+  SpecNode other(k, "/activation", *activation_schema());
   const std::string msg = input_error([&] { read_activation(other, m, nullptr, dir.str(), mesh_file); });
-  EXPECT_NE(msg.find("no $ElementData view named \"t_act\" (its $ElementData views: \"activation\"), expected one "
-                     "with 1 components per element"),
+  EXPECT_NE(msg.find("no $ElementData view named \"t_act\", expected one with 1 components per element: one of "
+                     "its views (activation)"),
             std::string::npos)
       << msg;
 }
@@ -566,8 +566,7 @@ TEST(ActivationFile, GmshElementViewRoundTrips) {
 // ---- the spec ---------------------------------------------------------------------------
 
 std::shared_ptr<const ActivationField> read_with_schema(const json& j, const TetMesh& m, const FrameField* frames) {
-  static const Schema schema = activation_schema();
-  SpecNode node(j, "/activation", nullptr, schema.get());
+  SpecNode node(j, "/activation", *activation_schema());
   return read_activation(node, m, frames, ".", "");
 }
 
@@ -643,8 +642,8 @@ TEST(ActivationSpec, BadKeysAreNamed) {
   msg = err({{"kind", "uniform"}, {"time", 1}, {"sources", 3}});
   EXPECT_NE(msg.find("unknown key 'sources' in /activation"), std::string::npos) << msg;
   msg = err({{"kind", "eikonall"}});
-  EXPECT_NE(msg.find("/activation/kind: got \"eikonall\", expected one of \"uniform\", \"eikonal\", \"file\"; did you "
-                     "mean \"eikonal\"?"),
+  EXPECT_NE(msg.find("/activation/kind: got \"eikonall\", expected one of \"uniform\", \"eikonal\", \"file\" (how "
+                     "activation times are given: one time, an eikonal front, or a file); did you mean \"eikonal\"?"),
             std::string::npos)
       << msg;
   msg = err({{"kind", "file"}, {"file", "/nonexistent/act.csv"}, {"format", "csv"}});

@@ -326,7 +326,7 @@ TEST(Land2017, ParameterSetsAndDescription) {
   EXPECT_EQ(sk.ca50_ref, 2.5);
   EXPECT_EQ(sk.k_ws, 4.0);
   const json j{{"model", "land2017"}, {"parameter_set", "skinned"}, {"k_u", 500}};
-  SpecNode node(j, "/active");
+  SpecNode node(j, "/active", *cell_model_schema());
   const CellModelPtr m = make_cell_model(node);
   const std::string d = m->description();
   EXPECT_NE(d.find("skinned parameter set with k_u overridden"), std::string::npos) << d;
@@ -433,7 +433,7 @@ TEST(CalciumTransient, AnalyticPeakPeriodicRepeatAndRest) {
 
 TEST(PrescribedTension, TableInterpolatesAndHoldsItsEnds) {
   const json j = json::parse(R"({"model": "table", "table": [[0, 0], [0.1, 60e3], [0.4, 0]]})");
-  SpecNode node(j, "/active");
+  SpecNode node(j, "/active", *cell_model_schema());
   const CellModelPtr m = make_cell_model(node);
   EXPECT_EQ(m->state_size(), 0);
   std::vector<double> none;
@@ -445,12 +445,12 @@ TEST(PrescribedTension, TableInterpolatesAndHoldsItsEnds) {
   EXPECT_EQ(Ta(-5.0, 0.0), 0.0);  // held before the first entry
   EXPECT_EQ(Ta(9.0, 0.0), 0.0);   // and after the last
   const json jh = json::parse(R"({"model": "table", "table": [[0.1, 5], [0.2, 7]]})");
-  SpecNode held(jh, "/a");
+  SpecNode held(jh, "/a", *cell_model_schema());
   const CellModelPtr h = make_cell_model(held);
   EXPECT_EQ(h->advance({0.0, kDt, 0.0, 1.0, 0.0}, none, none).Ta, 5.0);
   EXPECT_EQ(h->advance({0.3, kDt, 0.0, 1.0, 0.0}, none, none).Ta, 7.0);
   const json jc{{"model", "constant"}, {"Ta", 2.5e4}};
-  SpecNode c(jc, "/a");
+  SpecNode c(jc, "/a", *cell_model_schema());
   const ActiveTension k = make_cell_model(c)->advance({0.3, kDt, 0.0, 1.2, 3.0}, none, none);
   EXPECT_EQ(k.Ta, 2.5e4);
   EXPECT_EQ(k.dTa_dlambda, 0.0);
@@ -462,7 +462,7 @@ TEST(PrescribedTension, TableInterpolatesAndHoldsItsEnds) {
 std::string error_of(const std::string& spec) {
   try {
     const json j = json::parse(spec);  // SpecNode only points at it
-    SpecNode node(j, "/active");
+    SpecNode node(j, "/active", *cell_model_schema());
     make_cell_model(node);
   } catch (const InputError& e) {
     return e.what();
@@ -524,7 +524,7 @@ TEST(CellModelSpec, ReaderAndSchemaAgreeOnEveryKey) {
   held.reserve(specs.size());
   for (const auto& s : specs) {
     held.push_back(json::parse(s));
-    SpecNode node(held.back(), "/active", &doc, schema.get());
+    SpecNode node(held.back(), "/active", *schema, &doc);
     EXPECT_NO_THROW(read_active_stress(node)) << s;
   }
   // Every key of every branch (and of each calcium object) was read by some spec.

@@ -24,7 +24,7 @@ using circulation_keys::kMmHg;
 using circulation_keys::kMl;
 
 CirculationPtr make(const json& j) {
-  SpecNode node(j, "/circulation");
+  SpecNode node(j, "/circulation", *circulation_schema());
   return make_circulation(node);
 }
 
@@ -334,8 +334,8 @@ TEST(Circulation, RunSpecRefusesAVentricleWithoutItsCavity) {
   }
 }
 
-// Reader and schema agree on every key of every branch (SpecNode throws an internal
-// error on a disagreement), and the description names the parameters.
+// The reader reads every key of every branch by the schema (SpecNode throws an internal
+// error on a key it lacks), and the description names the parameters.
 TEST(Circulation, ReaderAgreesWithSchemaAndDescribes) {
   const json specs[] = {
       {{"kind", "windkessel"},
@@ -351,7 +351,7 @@ TEST(Circulation, ReaderAgreesWithSchemaAndDescribes) {
        {"right_ventricle", {{"E_max", 0.1}}}}};
   for (const json& j : specs) {
     SpecDoc doc;
-    SpecNode node(j, "/circulation", &doc, circulation_schema().get());
+    SpecNode node(j, "/circulation", *circulation_schema(), &doc);
     const auto c = make_circulation(node);
     EXPECT_GT(doc.visited.size(), 10u);
     EXPECT_NE(c->description().find(c->kind()), std::string::npos);

@@ -551,8 +551,8 @@ TEST(FileFrame, BadGmshViewsNameFileViewAndTag) {
   const std::string good = view("ElementData", "fibre", {6, 7}, x) + view("ElementData", "sheet", {6, 7}, y);
   EXPECT_EQ(read(good), "nothing thrown");
   std::string msg = read(good, "fibres");
-  EXPECT_NE(msg.find(fmt::format("file '{}': no $ElementData view named \"fibres\" (its $ElementData views: "
-                                 "\"fibre\", \"sheet\"), expected one with 3 components per element",
+  EXPECT_NE(msg.find(fmt::format("file '{}': no $ElementData view named \"fibres\", expected one with 3 components "
+                                 "per element: one of its views (fibre, sheet); did you mean \"fibre\"?",
                                  mesh_file)),
             std::string::npos)
       << msg;
@@ -575,8 +575,8 @@ TEST(FileFrame, BadGmshViewsNameFileViewAndTag) {
 
 FrameFieldSpec read_frame_json(const json& frame, const TetMesh& m, const std::string& base_dir = ".") {
   const json j = {{"frame", frame}};
-  SpecNode root(j, "", nullptr, &run_spec_schema());
-  SpecNode f = root.child("frame", false, "material frame (fibre, sheet, normal)");
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode f = root.child("frame");
   FrameFieldSpec spec = read_frame_field_spec(f, m, base_dir, "");
   f.finish();
   return spec;

@@ -4,6 +4,7 @@
 // compression (exactly the law with a_f = 0), the reference state, the small-strain
 // limit against the linearized law, and Guccione without its volumetric term.
 #include "common/materials/Guccione.h"
+#include "common/spec/spec_schemas.h"
 #include "common/materials/HolzapfelOgden.h"
 #include "common/materials/material_factory.h"
 #include "tests/common/material_finite_differences.h"
@@ -311,7 +312,7 @@ TEST(GuccioneVolumetric, NoneDiffersFromTheDefaultExactlyByThePenalty) {
 /// make_material on `spec` at "/material"; the InputError's message or "".
 std::string factory_error(const json& spec) {
   try {
-    SpecNode node(spec, "/material");
+    SpecNode node(spec, "/material", material_schema());
     make_material(node);
   } catch (const InputError& e) {
     return e.what();
@@ -321,7 +322,7 @@ std::string factory_error(const json& spec) {
 
 TEST(HolzapfelOgdenFactory, DefaultsAreHolzapfelOgden2009Table1InPascal) {
   const json spec = {{"model", "holzapfel_ogden"}};  // SpecNode holds a pointer: a named json
-  SpecNode node(spec, "/material");
+  SpecNode node(spec, "/material", material_schema());
   const auto m = std::dynamic_pointer_cast<const HolzapfelOgden>(make_material(node));
   ASSERT_TRUE(m);
   const HolzapfelOgdenParameters& p = m->parameters();
@@ -342,7 +343,7 @@ TEST(HolzapfelOgdenFactory, ReadsEveryKey) {
   const json spec = {{"model", "holzapfel_ogden"}, {"a", 100}, {"b", 5}, {"af", 0}, {"bf", 10},
                      {"as", 0},  {"bs", 3},   {"afs", 0},  {"bfs", 2},  {"isotropic", "full"},
                      {"volumetric", "none"}};
-  SpecNode node(spec, "/material");
+  SpecNode node(spec, "/material", material_schema());
   const auto m = std::dynamic_pointer_cast<const HolzapfelOgden>(make_material(node));
   ASSERT_TRUE(m);
   EXPECT_EQ(m->parameters().a, 100.0);
@@ -351,7 +352,7 @@ TEST(HolzapfelOgdenFactory, ReadsEveryKey) {
   EXPECT_EQ(m->parameters().isotropic, IsotropicInvariant::full);
   EXPECT_EQ(m->parameters().volumetric, Volumetric::none);
   const json guccione = {{"model", "guccione"}, {"volumetric", "none"}};
-  SpecNode g(guccione, "/material");
+  SpecNode g(guccione, "/material", material_schema());
   const auto gm = std::dynamic_pointer_cast<const Guccione>(make_material(g));
   ASSERT_TRUE(gm);
   EXPECT_EQ(gm->parameters().volumetric, Volumetric::none);

@@ -2,6 +2,7 @@
 // finite strain, major symmetry, the small-strain limit, inverted points, frame
 // objectivity, and the spec factory's error messages.
 #include "common/materials/Guccione.h"
+#include "common/spec/spec_schemas.h"
 #include "common/materials/HolzapfelOgden.h"
 #include "common/materials/NeoHookean.h"
 #include "common/materials/StVenantKirchhoff.h"
@@ -234,7 +235,7 @@ TEST(MaterialConstructors, RejectNonPhysicalParameters) {
 /// message, or "" when nothing was thrown.
 std::string factory_error(const json& spec) {
   try {
-    SpecNode node(spec, "/material");
+    SpecNode node(spec, "/material", material_schema());
     make_material(node);
   } catch (const InputError& e) {
     return e.what();
@@ -251,7 +252,7 @@ TEST(MaterialFactory, BuildsEveryModel) {
   };
   ASSERT_EQ(material_models().size(), std::size(specs));
   for (const json& spec : specs) {
-    SpecNode node(spec, "/material");
+    SpecNode node(spec, "/material", material_schema());
     const MaterialPtr m = make_material(node);
     ASSERT_TRUE(m);
     EXPECT_EQ(json(m->name()), spec["model"]);
@@ -260,7 +261,7 @@ TEST(MaterialFactory, BuildsEveryModel) {
 
 TEST(MaterialFactory, ReadsGuccioneParametersWithDefaults) {
   const json spec = {{"model", "guccione"}, {"C", 2000.0}};
-  SpecNode node(spec, "/material");
+  SpecNode node(spec, "/material", material_schema());
   const auto m = std::dynamic_pointer_cast<const Guccione>(make_material(node));
   ASSERT_TRUE(m);
   EXPECT_EQ(m->parameters().C, 2000.0);

@@ -27,71 +27,99 @@ std::string internal_error(F f) {
   return "nothing thrown";
 }
 
-TEST(SpecSchema, ReadsThatAgreeWithTheSchemaPass) {
+TEST(SpecSchema, ReadsTakeDefaultsAndRangesFromTheSchema) {
   const json j = {{"farm", {{"batch", 2}}}, {"time", {{"t_end", 2.0}}}};
-  SpecNode root(j, "", nullptr, &run_spec_schema());
-  SpecNode farm = root.child("farm", false, "farm");
-  EXPECT_EQ(farm.integer("batch", 4, Range::closed(1, 1e6), "jobs"), 2);
-  SpecNode time = root.child("time", false, "time");
-  EXPECT_EQ(time.number("t_end", 1.0, Range::positive(), "end"), 2.0);
-  EXPECT_EQ(time.integer("steps", 1, Range::closed(1, 1e7), "steps"), 1);
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode farm = root.child("farm");
+  EXPECT_EQ(farm.integer("batch"), 2);
+  EXPECT_EQ(farm.choice("policy"), "cost_based");  // the schema's default
+  SpecNode time = root.child("time");
+  EXPECT_EQ(time.number("t_end"), 2.0);
+  EXPECT_EQ(time.integer("steps"), 1);
+  EXPECT_EQ(time.number("beta"), 0.25);
 }
 
-TEST(SpecSchema, AReadWithAnotherDefaultTypeOrRangeIsAnInternalError) {
+TEST(SpecSchema, ErrorsUseTheSchemasRangeAndHelp) {
+  const json j = {{"newton", {{"max_iterations", 0}, {"macro_solver", {{"refresh", "adaptve"}}}}}};
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode n = root.child("newton");
+  const SchemaNode& help = *run_spec_schema().find("newton", j)->find("max_iterations", j["newton"]);
+  try {
+    n.integer("max_iterations");
+    ADD_FAILURE() << "0 iterations accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "/newton/max_iterations: got 0, expected an integer in [1, 1000] (" + help.help + ")");
+  }
+  SpecNode m = n.child("macro_solver");
+  try {
+    m.choice("refresh");
+    ADD_FAILURE() << "a misspelt choice accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("expected one of \"every_iteration\", \"adaptive\" (every_iteration: "),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("; did you mean \"adaptive\"?"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SpecSchema, AReadOfAnotherTypeIsAnInternalError) {
   const json j = {{"farm", json::object()}};
-  SpecNode root(j, "", nullptr, &run_spec_schema());
-  SpecNode farm = root.child("farm", false, "farm");
-  const std::string def =
-      internal_error([&] { farm.integer("batch", 5, Range::closed(1, 1e6), "jobs"); });
-  EXPECT_NE(def.find("disagree on /farm/batch: the reader declares integer in [1, 1000000], "
-                     "default 5, the schema integer in [1, 1000000], default 4"),
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode farm = root.child("farm");
+  const std::string type = internal_error([&] { farm.number("batch"); });
+  EXPECT_NE(type.find("internal error: the spec reader reads /farm/batch with number(), the spec "
+                      "schema (common/spec/spec_schemas.cpp) declares it integer in [1, 1000000]"),
             std::string::npos)
-      << def;
-  const std::string type =
-      internal_error([&] { farm.number("batch", 4.0, Range::closed(1, 1e6), "jobs"); });
-  EXPECT_NE(type.find("the reader declares number in [1, 1000000], default 4"), std::string::npos)
       << type;
-  const std::string range =
-      internal_error([&] { farm.integer("batch", 4, Range::closed(0, 1e6), "jobs"); });
-  EXPECT_NE(range.find("disagree on /farm/batch"), std::string::npos) << range;
-  const std::string choices = internal_error(
-      [&] { farm.choice("policy", "cost_based", {"cost_based", "round_robin"}, "p"); });
-  EXPECT_NE(choices.find("disagree on /farm/policy"), std::string::npos) << choices;
+  const std::string object = internal_error([&] { farm.child("policy"); });
+  EXPECT_NE(object.find("reads /farm/policy with child()"), std::string::npos) << object;
 }
 
 TEST(SpecSchema, AKeyTheSchemaLacksIsAnInternalError) {
   const json j = {{"newton", json::object()}};
-  SpecNode root(j, "", nullptr, &run_spec_schema());
-  SpecNode n = root.child("newton", false, "newton");
-  const std::string msg = internal_error([&] { n.number("atol", 1e-12, Range::positive(), "a"); });
-  EXPECT_NE(msg.find("disagree on /newton/atol: the reader declares number > 0, default 1e-12, "
-                     "the schema has no such key here"),
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode n = root.child("newton");
+  const std::string msg = internal_error([&] { n.number("atol"); });
+  EXPECT_NE(msg.find("internal error: the spec reader reads /newton/atol (number), which the spec "
+                     "schema (common/spec/spec_schemas.cpp) has no key for here"),
             std::string::npos)
       << msg;
 }
 
 TEST(SpecSchema, TheDiscriminatorPicksTheBranch) {
   const json gmsh = {{"mesh", {{"kind", "gmsh"}, {"file", "heart.msh"}}}};
-  SpecNode root(gmsh, "", nullptr, &run_spec_schema());
-  SpecNode m = root.child("mesh", true, "mesh");
-  m.choice("kind", "box", {"box", "gmsh", "lv"}, "kind");
-  EXPECT_EQ(m.string("file", std::nullopt, "file"), "heart.msh");
+  SpecNode root(gmsh, "", run_spec_schema());
+  SpecNode m = root.child("mesh");
+  m.choice("kind");
+  EXPECT_EQ(m.string("file"), "heart.msh");
   // Without "kind" the mesh is a box (the default branch), which has no file.
   const json box = {{"mesh", {{"hi", {1, 1, 1}}}}};
-  SpecNode root2(box, "", nullptr, &run_spec_schema());
-  SpecNode m2 = root2.child("mesh", true, "mesh");
-  m2.choice("kind", "box", {"box", "gmsh", "lv"}, "kind");
-  const std::string msg = internal_error([&] { m2.string("file", std::nullopt, "file"); });
-  EXPECT_NE(msg.find("disagree on /mesh/file"), std::string::npos) << msg;
-  EXPECT_EQ(m2.numbers("hi", 3, std::nullopt, "upper corner"), (std::vector<double>{1, 1, 1}));
+  SpecNode root2(box, "", run_spec_schema());
+  SpecNode m2 = root2.child("mesh");
+  EXPECT_EQ(m2.choice("kind"), "box");
+  const std::string msg = internal_error([&] { m2.string("file"); });
+  EXPECT_NE(msg.find("reads /mesh/file (string), which the spec schema"), std::string::npos) << msg;
+  EXPECT_EQ(m2.numbers("hi"), (std::vector<double>{1, 1, 1}));
+  EXPECT_EQ(m2.numbers("lo"), (std::vector<double>{0, 0, 0}));  // the schema's default
+}
+
+TEST(SpecNames, KnownNamesListThemAndSuggestTheNearest) {
+  EXPECT_EQ(known_names("a node set of the mesh", "tpo", {"bottom", "top"}),
+            "a node set of the mesh (bottom, top); did you mean \"top\"?");
+  EXPECT_EQ(known_names("a node set of the mesh", "left", {"bottom", "top"}), "a node set of the mesh (bottom, top)");
+  EXPECT_EQ(known_names("a cavity", "lv", {}), "a cavity (none)");
+  EXPECT_EQ(did_you_mean("3", {"1", "2"}), "");  // a region tag has no spelling
+  EXPECT_EQ(unknown_key("rtoll", "/newton", {"rtol", "max_iterations"}),
+            "unknown key 'rtoll' in /newton; did you mean 'rtol'?; known keys: rtol, max_iterations");
 }
 
 TEST(SpecSchema, ReadsRecordTheSchemaNodesTheyVisit) {
   const json j = {{"output", {{"every", 3}}}};
   SpecDoc doc;
-  SpecNode root(j, "", &doc, &run_spec_schema());
-  SpecNode out = root.child("output", false, "results");
-  out.integer("every", 1, Range::closed(1, 1e7), "every");
+  SpecNode root(j, "", run_spec_schema(), &doc);
+  SpecNode out = root.child("output");
+  out.integer("every");
   const SchemaNode* output = run_spec_schema().find("output", j);
   ASSERT_NE(output, nullptr);
   EXPECT_EQ(doc.visited.size(), 2u);

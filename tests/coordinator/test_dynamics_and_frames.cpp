@@ -88,5 +88,40 @@ TEST(RunSpecErrors, UnknownSetAndModelAreNamedWithSuggestions) {
   }
 }
 
+/// read_run_spec's InputError text for `j` ("" if it reads).
+std::string run_spec_error(const json& j) {
+  try {
+    read_run_spec(j, "");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Every refused name lists the known ones and suggests the nearest (known_names).
+TEST(RunSpecErrors, RefusedNamesSuggestTheNearest) {
+  json j = cantilever("quasi_static", 1, 1.0);
+  j["pressure"][0]["surface"] = "zmx";
+  EXPECT_EQ(run_spec_error(j),
+            "/pressure/0/surface: got \"zmx\", expected a named surface of the mesh (xmax, xmin, ymax, "
+            "ymin, zmax, zmin); did you mean \"zmax\"?");
+  j = cantilever("quasi_static", 1, 1.0);
+  j["assign"] = {{"default", "mm"}};
+  EXPECT_EQ(run_spec_error(j),
+            "/assign/default: got \"mm\", expected the name of a model in /models (m); did you mean \"m\"?");
+  j = cantilever("quasi_static", 1, 1.0);
+  j["cavities"] = {{"box", {{"surface", "xmaxx"}}}};
+  EXPECT_NE(run_spec_error(j).find("/cavities/box/surface: got \"xmaxx\", expected a named surface of the mesh "
+                                   "(xmax, xmin, ymax, ymin, zmax, zmin); did you mean \"xmax\"?"),
+            std::string::npos)
+      << run_spec_error(j);
+  j = cantilever("quasi_static", 1, 1.0);
+  j["time"]["scheme"] = "newmrk";
+  EXPECT_NE(run_spec_error(j).find("/time/scheme: got \"newmrk\", expected one of \"quasi_static\", \"newmark\" "
+                                   "(quasi-static load stepping or Newmark-β dynamics); did you mean \"newmark\"?"),
+            std::string::npos)
+      << run_spec_error(j);
+}
+
 }  // namespace
 }  // namespace fe2

@@ -1,5 +1,5 @@
 // Every key of the spec schema is read by the reader, and the reader reads no key the
-// schema lacks (SpecNode checks that on every read; a disagreement throws). Together:
+// schema lacks (SpecNode reads every key by the schema; a key it lacks throws). Together:
 // the schema that spec-doc and spec-schema print is exactly what the reader accepts.
 // The specs read: every shipped config, the exemplars in tests/data/schema/ (written to
 // cover every branch) and the positive controls of the CLI tests.

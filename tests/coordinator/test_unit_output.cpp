@@ -4,6 +4,7 @@
 // average to the P̄ the unit reported for the step, also for cells with history and
 // viscosity (the fields are taken before the step's commit).
 #include "common/cellmodels/cell_model_factory.h"
+#include "common/cellmodels/cell_model_schema.h"
 #include "common/materials/Myocardium.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/output/UnitOutput.h"
@@ -96,7 +97,7 @@ TEST(UnitOutput, HomogeneousUnitWritesTheAffineDisplacement) {
 /// Land cells with viscosity, stiff, in a soft matrix.
 MaterialPtr contracting_cell() {
   static const json spec = {{"model", "land2017"}};
-  SpecNode node(spec, "/active");
+  SpecNode node(spec, "/active", *cell_model_schema());
   return std::make_shared<Myocardium>(std::make_shared<NeoHookean>(2.0e5, 0.45),
                                       MyocardiumOptions{make_cell_model(node), 0.1, 20.0});
 }

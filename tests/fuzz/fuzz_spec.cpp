@@ -7,10 +7,13 @@
 // (The rest of read_run_spec, in coordinator/, builds meshes and unit plans and needs
 // the solver libraries; the fuzz build links only common/ and proto/.)
 #include "common/cellmodels/cell_model_factory.h"
+#include "common/cellmodels/cell_model_schema.h"
 #include "common/circulation/circulation_factory.h"
 #include "common/circulation/circulation_run_spec.h"
+#include "common/circulation/circulation_schema.h"
 #include "common/spec/SpecNode.h"
 #include "common/spec/memory_size.h"
+#include "common/spec/spec_schemas.h"
 #include "tests/fuzz/fuzz_support.h"
 
 #include <cmath>
@@ -20,25 +23,27 @@ using namespace fe2;
 namespace {
 
 // A run spec's sections as coordinator/RunSpec.cpp reads them, through every kind of
-// SpecNode accessor (values and ranges as there).
+// SpecNode accessor (keys of the run spec schema).
 void read_run_sections(const json& j) {
-  SpecNode root(j, "");
-  root.string("title", "", "title");
-  SpecNode time = root.child("time", false, "time");
-  fuzz::require(time.number("t_end", 1.0, Range::positive(), "end") > 0, "t_end in range");
-  const int steps = time.integer("steps", 1, Range::closed(1, 1e6), "steps");
-  fuzz::require(steps >= 1 && steps <= 1000000, "steps in range");
+  SpecNode root(j, "", run_spec_schema());
+  root.string("title");
+  SpecNode time = root.child("time");
+  fuzz::require(time.number("t_end") > 0, "t_end in range");
+  const int steps = time.integer("steps");
+  fuzz::require(steps >= 1 && steps <= 10000000, "steps in range");
   time.finish();
-  SpecNode mesh = root.child("mesh", false, "mesh");
-  mesh.choice("kind", "box", {"box", "gmsh", "lv"}, "kind");
-  fuzz::require(mesh.numbers("lo", 3, std::vector<double>{0, 0, 0}, "lo").size() == 3, "3 numbers");
-  mesh.numbers("divisions", -1, std::vector<double>{1}, "divisions");
-  for (SpecNode& d : root.children("dirichlet", false, "conditions")) {
-    d.string("set", std::nullopt, "set");
-    d.boolean("fixed", true, "fixed");
+  SpecNode mesh = root.child("mesh");
+  if (mesh.choice("kind") == "box") {
+    fuzz::require(mesh.numbers("lo").size() == 3, "3 numbers");
+    mesh.numbers("divisions");
+  }
+  for (SpecNode& d : root.children("dirichlet")) {
+    d.string("set");
+    d.numbers("components");
     d.finish();
   }
-  root.names("probes", "probes");
+  SpecNode probes = root.child("probes");
+  for (const auto& p : probes.raw().items()) probes.numbers(p.key());
 }
 
 void read_common_parts(const json& j) {
@@ -53,7 +58,7 @@ void read_common_parts(const json& j) {
   }
   if (j.contains("circulation") && j["circulation"].is_object()) {
     fuzz::expect_only<InputError>([&] {
-      SpecNode c(j["circulation"], "/circulation");
+      SpecNode c(j["circulation"], "/circulation", *circulation_schema());
       const auto circ = make_circulation(c);
       fuzz::require(circ && std::isfinite(circ->period()) && circ->period() > 0, "a finite period");
     });
@@ -65,7 +70,7 @@ void read_common_parts(const json& j) {
       if (m.is_object() && m.contains("material") && m["material"].is_object() &&
           m["material"].contains("active") && m["material"]["active"].is_object())
         fuzz::expect_only<InputError>([&] {
-          SpecNode a(m["material"]["active"], "/models/" + name + "/material/active");
+          SpecNode a(m["material"]["active"], "/models/" + name + "/material/active", *cell_model_schema());
           fuzz::require(read_active_stress(a).cell != nullptr, "a cell model");
         });
     }

@@ -4,6 +4,7 @@
 // derivative of its equilibrated stress in Z̄ and in Ż̄, and a homogeneous contracting
 // unit is the macro law with the same model.
 #include "common/materials/HolzapfelOgden.h"
+#include "common/cellmodels/cell_model_schema.h"
 #include "common/materials/Myocardium.h"
 #include "common/cellmodels/cell_model_factory.h"
 #include "tests/worker/unit_fixtures.h"
@@ -24,7 +25,7 @@ constexpr double kSystole = 0.12;   // s after activation
 /// Land et al. 2017 (intact set) with its default calcium transient.
 CellModelPtr contracting_cell() {
   static const json spec = {{"model", "land2017"}};  // SpecNode keeps a pointer
-  SpecNode node(spec, "/active");
+  SpecNode node(spec, "/active", *cell_model_schema());
   return make_cell_model(node);
 }
 

@@ -2,6 +2,7 @@
 // CHOLMOD and the model really hold (issue 7 item 11), and materials assigned by the
 // physical names of a Gmsh cell (item 14).
 #include "common/error.h"
+#include "common/spec/spec_schemas.h"
 #include "common/mesh/gmsh_reader.h"
 #include "unit_fixtures.h"
 #include "worker/MicroModel.h"
@@ -88,7 +89,7 @@ TEST(MicroModelPlan, GmshPhysicalNamesSelectMaterials) {
       "cell": "mesh_file", "mesh_file": "cell_ecm.msh",
       "materials": {"ecm": {"model": "neo_hookean", "E": 10, "nu": 0.3},
                     "cell": {"model": "neo_hookean", "E": 1000, "nu": 0.3}}})");
-  const MicroModelPlan plan = MicroModel::plan(SpecNode(spec, "/unit"), dir.string());
+  const MicroModelPlan plan = MicroModel::plan(SpecNode(spec, "/unit", micro_unit_schema()), dir.string());
   EXPECT_EQ(plan.region_names, (std::vector<std::string>{"ecm", "cell"}));
   EXPECT_EQ(plan.size_key, "/unit/mesh_file");
   const auto model = plan.build();
@@ -102,7 +103,7 @@ TEST(MicroModelPlan, GmshPhysicalNamesSelectMaterials) {
   by_tag["materials"] = json::parse(R"({"0": {"model": "neo_hookean", "E": 10, "nu": 0.3},
                                         "1": {"model": "neo_hookean", "E": 1000, "nu": 0.3}})");
   try {
-    MicroModel::plan(SpecNode(by_tag, "/unit"), dir.string());
+    MicroModel::plan(SpecNode(by_tag, "/unit", micro_unit_schema()), dir.string());
     ADD_FAILURE() << "materials by tag accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/unit/materials/ecm: got nothing"), std::string::npos)

@@ -3,6 +3,7 @@
 // to the GMRES tolerance, the float factor is really used (it costs GMRES iterations),
 // and the spec keys are checked.
 #include "common/error.h"
+#include "common/spec/spec_schemas.h"
 #include "unit_fixtures.h"
 #include "worker/MicroModel.h"
 #include "worker/FloatCholeskyFactor.h"
@@ -216,7 +217,7 @@ MicroModelPlan plan_with(const nlohmann::json& solver) {
       "cell": "homogeneous", "resolution": [2, 2, 2],
       "materials": {"matrix": {"model": "neo_hookean", "E": 10, "nu": 0.3}}})");
   spec["solver"] = solver;
-  return MicroModel::plan(SpecNode(spec, "/unit"), ".");
+  return MicroModel::plan(SpecNode(spec, "/unit", micro_unit_schema()), ".");
 }
 
 std::string refusal(const nlohmann::json& solver) {

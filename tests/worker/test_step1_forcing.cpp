@@ -3,6 +3,7 @@
 // η = ‖r‖/r_ref within [gmres_rtol, gmres_forcing_max]. It must save GMRES iterations on
 // a kept factor without costing Newton iterations or changing the converged answer.
 #include "common/error.h"
+#include "common/spec/spec_schemas.h"
 #include "unit_fixtures.h"
 #include "worker/MicroModel.h"
 
@@ -137,7 +138,7 @@ MicroSolverOptions options_from(const nlohmann::json& solver) {
       "cell": "homogeneous", "resolution": [2, 2, 2],
       "materials": {"matrix": {"model": "neo_hookean", "E": 10, "nu": 0.3}}})");
   spec["solver"] = solver;
-  return MicroModel::plan(SpecNode(spec, "/unit"), ".").options;
+  return MicroModel::plan(SpecNode(spec, "/unit", micro_unit_schema()), ".").options;
 }
 
 TEST(Step1Forcing, SpecKeysAreReadAndBadValuesRefused) {
