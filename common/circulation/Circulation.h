@@ -1,5 +1,5 @@
 #pragma once
-// A 0D blood circulation coupled strongly to the cavities of a wall model (issue #10).
+// A 0D blood circulation coupled strongly to the cavities of a wall model.
 //
 // The circulation is a network of compartments (nodes) joined by connections:
 //   compartments: a cavity (its pressure p_c is an input: the wall model's unknown),
