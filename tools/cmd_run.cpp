@@ -16,7 +16,7 @@
 #include "tools/stop_signal.h"
 #include "tools/study_spec.h"
 #include "worker/blas_core.h"
-#include "worker/unit_spec.h"
+#include "tools/unit_spec.h"
 #include "worker/worker_loop.h"
 
 #include <spdlog/sinks/basic_file_sink.h>

@@ -1,7 +1,7 @@
 #include "common/io/vtu_writer.h"
 #include "tools/commands.h"
 #include "tools/memory_limit.h"
-#include "worker/unit_spec.h"
+#include "tools/unit_spec.h"
 #include "worker/unit_equilibrium.h"
 
 #include <spdlog/spdlog.h>

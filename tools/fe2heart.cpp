@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
   fe2::cli::StudyOptions study;
   auto* c_study = app.add_subcommand(
       "study", "run variants of a base spec, measure their cost and error against a reference: "
-               "DIR/study.json, study.csv, study.txt, pareto.png (README \"What accuracy costs\")");
+               "DIR/study.json, study.csv, study.txt, pareto.png (docs/study.md)");
   c_study->footer(
       "STUDY.json:\n"
       "  \"base\": \"spec.json\"            the base run spec (relative to the study file)\n"

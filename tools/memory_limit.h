@@ -1,6 +1,6 @@
 #pragma once
 // The memory a rank may use (`--memory-limit`) and the check that refuses unit models
-// that would not fit, before any of them is built (issue 7 item 11).
+// that would not fit, before any of them is built.
 #include "common/spec/memory_size.h"
 #include "coordinator/RunSpec.h"
 #include "worker/MicroModel.h"

@@ -1,7 +1,7 @@
 #pragma once
 // A study file (`fe2heart study STUDY.json`): a base run spec, the variants to run
 // from it (each a set of JSON-pointer edits), the reference to compare them with, the
-// quantities compared, and how each variant is launched. See README "What accuracy costs".
+// quantities compared, and how each variant is launched. See docs/study.md.
 //
 //   {"base": "farm_beam.json",                     // relative to the study file
 //    "variants": [{"name": "fine", "set": {"/time/steps": 16}}, ...],

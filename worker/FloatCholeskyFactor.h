@@ -4,7 +4,7 @@
 //
 // Why not a library: Debian 12's CHOLMOD (3.0.14) factors in double only, and MUMPS's
 // single-precision LDLᵀ measured 1.29× CHOLMOD's double refresh on the 27,780-DOF unit
-// (BENCHMARKS.md, "Single-precision factor"). This class keeps CHOLMOD's symbolic
+// (docs/benchmarks/2026-11-micro-unit.md, "Single-precision factor"). This class keeps CHOLMOD's symbolic
 // analysis (the fill-reducing ordering it picks, METIS on the units measured;
 // supernodes; row patterns) and does the numeric work itself,
 // supernode by supernode in the left-looking order CHOLMOD's own numeric factorization

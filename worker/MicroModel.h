@@ -26,7 +26,7 @@ struct MicroSolverOptions {
   enum class Factorization { cholesky, lu, automatic };
   enum class Refresh { every_iteration, fixed, adaptive, collective };
   Factorization factorization = Factorization::automatic;
-  Refresh refresh = Refresh::collective;  ///< BENCHMARKS "How often to refactor"
+  Refresh refresh = Refresh::collective;  ///< docs/solvers.md, "How often to refactor"
   int N_t = 10;              ///< fixed policy: refresh at iteration 1 of every N_t-th step
   bool step4 = true;         ///< Eq. (11): δw = δw₁ − χ ΔZ̄
   double gmres_rtol = 1e-10; ///< Step 1: ‖K δw₁ + r‖ <= gmres_rtol ‖r‖ (the tightest it asks)

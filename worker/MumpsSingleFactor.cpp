@@ -32,7 +32,8 @@ class MumpsSingleFactor final : public SparseFactor {
     // 1: LDLᵀ without pivoting, under the LLᵀ kind's contract (K symmetric positive
     // definite, as CHOLMOD assumes). Measured on the 27,780-DOF unit against SYM = 2
     // (general symmetric, with pivoting): 81.5 against 96.3 Gflop, refresh 1.29× against
-    // 1.87× CHOLMOD's, 191 against 215 MB (BENCHMARKS.md, "Single-precision factor").
+    // 1.87× CHOLMOD's, 191 against 215 MB (docs/benchmarks/2026-11-micro-unit.md,
+    // "Single-precision factor").
     id_.sym = symmetric ? 1 : 0;
     run(-1, "initialization");
     initialized_ = true;

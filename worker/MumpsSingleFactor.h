@@ -1,5 +1,5 @@
 #pragma once
-// A single-precision factor of the unit matrix K (issue #11, the cost side): MUMPS
+// A single-precision factor of the unit matrix K, to cut the cost of a factor: MUMPS
 // smumps on one process (MPI_COMM_SELF), LDLᵀ without pivoting for the LLᵀ kind (K SPD) and LU
 // otherwise, optionally with block low-rank compression. It is only ever used as the
 // GMRES preconditioner (and first guess of χ): residuals, Krylov vectors and the

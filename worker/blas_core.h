@@ -4,7 +4,7 @@
 // and on CPUs newer than the Debian package) falls back to the generic SSE3 "Prescott"
 // kernels. On an AVX-512 Xeon (model 207) that made CHOLMOD's factorization of the
 // 27,780-DOF unit 3.3× slower (6.5 s against 2.0 s with OPENBLAS_CORETYPE=SkylakeX,
-// BENCHMARKS.md "BLAS kernels"). The choice cannot be changed once the library is
+// BENCHMARKS.md, "BLAS kernels"). The choice cannot be changed once the library is
 // loaded, so fe2heart says so and names the setting.
 #include <string>
 

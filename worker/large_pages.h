@@ -4,7 +4,7 @@
 // both miss the TLB, and the hardware prefetchers stop at every page boundary. Where the
 // kernel offers transparent huge pages only on request (`madvise`, Debian's default),
 // these helpers ask for them: `bench unit` measured the Step 1 solve of a 27,780-DOF unit
-// ≈ 20 % faster (BENCHMARKS "Large pages").
+// ≈ 20 % faster (BENCHMARKS.md, "Large pages").
 //
 // FE2_LARGE_PAGES=0 in the environment turns the requests off (for comparisons); nothing
 // else changes, and a kernel without transparent huge pages ignores the advice.

@@ -22,7 +22,7 @@ struct Circulation::Evaluation {
 Circulation::Circulation(std::string kind, std::vector<std::string> cavity_names,
                          std::vector<Node> nodes, std::vector<Link> links,
                          std::vector<int> inflow_valve, std::vector<int> outflow_valve,
-                         double period, std::string description)
+                         double period, std::string description, int left_ventricle)
     : kind_(std::move(kind)),
       cavity_names_(std::move(cavity_names)),
       nodes_(std::move(nodes)),
@@ -30,7 +30,8 @@ Circulation::Circulation(std::string kind, std::vector<std::string> cavity_names
       inflow_valve_(std::move(inflow_valve)),
       outflow_valve_(std::move(outflow_valve)),
       period_(period),
-      description_(std::move(description)) {
+      description_(std::move(description)),
+      left_ventricle_(left_ventricle) {
   const int n = static_cast<int>(nodes_.size());
   FE2_CHECK(static_cast<int>(inflow_valve_.size()) == cavities() &&
                 static_cast<int>(outflow_valve_.size()) == cavities(),

@@ -1,5 +1,5 @@
 #pragma once
-// A 0D blood circulation coupled strongly to the cavities of a wall model (issue #10).
+// A 0D blood circulation coupled strongly to the cavities of a wall model.
 //
 // The circulation is a network of compartments (nodes) joined by connections:
 //   compartments: a cavity (its pressure p_c is an input: the wall model's unknown),
@@ -74,14 +74,19 @@ class Circulation {
   };
 
   /// `cavity_names` in order; each cavity needs a node of kind cavity and its inflow and
-  /// outflow valves (link indices) for the phase.
+  /// outflow valves (link indices) for the phase. `left_ventricle` is the cavity index of
+  /// the systemic ventricle.
   Circulation(std::string kind, std::vector<std::string> cavity_names, std::vector<Node> nodes,
               std::vector<Link> links, std::vector<int> inflow_valve,
-              std::vector<int> outflow_valve, double period, std::string description);
+              std::vector<int> outflow_valve, double period, std::string description,
+              int left_ventricle);
 
   // --- The coupling interface.
   int cavities() const { return static_cast<int>(cavity_names_.size()); }
   const std::vector<std::string>& cavity_names() const { return cavity_names_; }
+  /// The cavity that pumps into the systemic arteries (the spec's "lv"): its pressure peak
+  /// marks systole.
+  int left_ventricle() const { return left_ventricle_; }
   /// Doubles of state: the internal unknowns, then the cavity pressures of the last step
   /// (for the phase's sign of dp).
   int state_size() const { return unknowns_ + cavities(); }
@@ -130,6 +135,7 @@ class Circulation {
   std::vector<int> inflow_valve_, outflow_valve_;
   double period_ = 0.0;
   std::string description_;
+  int left_ventricle_ = 0;
   std::vector<int> node_unknown_;   ///< per node: its unknown (V or p) or -1
   std::vector<int> link_unknown_;   ///< per link: its unknown (Q) or -1
   std::vector<std::string> unknown_name_;

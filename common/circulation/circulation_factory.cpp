@@ -1,6 +1,7 @@
 #include "common/circulation/circulation_factory.h"
 
 #include "common/circulation/circulation_keys.h"
+#include "common/error.h"
 
 #include <spdlog/fmt/fmt.h>
 
@@ -19,6 +20,7 @@ struct Net {
   std::vector<Node> nodes;
   std::vector<Link> links;
   std::vector<int> inflow, outflow;
+  int left_ventricle = -1;         ///< cavity index of "lv"
   std::vector<std::string> words;  ///< description pieces
 
   int node(Node n) {
@@ -105,6 +107,7 @@ std::string show_valve(const ValveParameters& v) {
 /// proximal junction → Z_c → compliance C → R_p → distal pressure.
 void windkessel_cavity(Net& net, SpecNode& node, const std::string& name, bool left, double period) {
   const int cav = net.cavity(name);
+  if (left) net.left_ventricle = net.nodes[cav].cavity;
   SpecNode pre = node.child("preload");
   const std::string pkind = pre.choice("kind");
   int source = -1;
@@ -194,6 +197,7 @@ void make_closed_loop(Net& net, SpecNode& node, double period) {
   irv_node.finish();
 
   const int lv = net.cavity("lv");
+  net.left_ventricle = net.nodes[lv].cavity;
   const int rv = rv_coupled ? net.cavity("rv") : net.elastance("rv", irv, period);
   const int LA = net.elastance("left_atrium", la, period);
   const int RA = net.elastance("right_atrium", ra, period);
@@ -201,8 +205,8 @@ void make_closed_loop(Net& net, SpecNode& node, double period) {
   const int ven_sys = net.compliance("systemic_veins", sys.C_ven, sys.p_ven_init);
   const int ar_pul = net.compliance("pulmonary_arteries", pul.C_ar, pul.p_ar_init);
   const int ven_pul = net.compliance("pulmonary_veins", pul.C_ven, pul.p_ven_init);
-  net.inflow[0] = net.valve("mitral_valve", LA, lv, mitral);
-  net.outflow[0] = net.valve("aortic_valve", lv, ar_sys, aortic);
+  net.inflow[net.left_ventricle] = net.valve("mitral_valve", LA, lv, mitral);
+  net.outflow[net.left_ventricle] = net.valve("aortic_valve", lv, ar_sys, aortic);
   net.vessel("systemic_arterial_flow", ar_sys, ven_sys, sys.R_ar, sys.L_ar);
   net.vessel("systemic_venous_flow", ven_sys, RA, sys.R_ven, sys.L_ven);
   const int tv = net.valve("tricuspid_valve", RA, rv, tricuspid);
@@ -244,9 +248,12 @@ std::shared_ptr<const Circulation> make_circulation(SpecNode& node) {
   node.finish();
   std::string description = fmt::format("circulation {} (period {} s): ", kind, period);
   for (size_t i = 0; i < net.words.size(); ++i) description += (i ? "; " : "") + net.words[i];
+  // Checked here, not in Circulation's constructor: a check there changes how GCC compiles
+  // Circulation::step, and with it the last bits of the coupled runs.
+  FE2_CHECK(net.left_ventricle >= 0, "circulation {}: no left ventricle among the cavities", kind);
   return std::make_shared<const Circulation>(kind, net.cavities, std::move(net.nodes),
                                              std::move(net.links), net.inflow, net.outflow,
-                                             period, description);
+                                             period, description, net.left_ventricle);
 }
 
 }  // namespace fe2

@@ -22,8 +22,8 @@ FaceKey sorted_key(const std::array<int, 3>& tri) {
 
 // The tets that own one face: at most two in a conforming mesh.
 struct FaceOwners {
-  int tet = -1;       ///< first tet found with this face
-  int opposite = -1;  ///< that tet's node opposite the face
+  std::array<int, 2> tet{-1, -1};       ///< in the order found (ascending element index)
+  std::array<int, 2> opposite{-1, -1};  ///< each tet's node opposite the face
   int count = 0;
 };
 
@@ -34,10 +34,11 @@ std::map<FaceKey, FaceOwners> build_face_map(const TetMesh& m) {
     for (int f = 0; f < 4; ++f) {
       const auto& lf = kTetFaces[f];
       FaceOwners& o = faces[sorted_key({t[lf[0]], t[lf[1]], t[lf[2]]})];
-      if (o.count++ == 0) {
-        o.tet = e;
-        o.opposite = t[f];
+      if (o.count < 2) {
+        o.tet[o.count] = e;
+        o.opposite[o.count] = t[f];
       }
+      ++o.count;
     }
   }
   return faces;
@@ -77,16 +78,10 @@ void check_regions(TetMesh& m, const std::string& source) {
                                  source, m.region.size(), m.tets.size()));
 }
 
-std::vector<int> unique_nodes(const TetMesh& m, const std::vector<std::array<int, 3>>& tris) {
-  std::vector<int> ids;
-  ids.reserve(6 * tris.size());
-  for (const auto& t : tris) {
-    const auto nodes = m.face_nodes(t);
-    ids.insert(ids.end(), nodes.begin(), nodes.end());
-  }
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-  return ids;
+// The owner a named triangle is oriented outward from: the only one of a boundary
+// face; of an interior face the one of the lower region tag, the first found if equal.
+int side_of(const TetMesh& m, const FaceOwners& o) {
+  return o.count == 2 && m.region[o.tet[1]] < m.region[o.tet[0]] ? 1 : 0;
 }
 
 void check_edges(const TetMesh& m, const std::string& source) {
@@ -134,6 +129,18 @@ std::vector<int> TetMesh::face_nodes(const std::array<int, 3>& tri) const {
   return n;
 }
 
+std::vector<int> TetMesh::surface_nodes(const std::vector<std::array<int, 3>>& tris) const {
+  std::vector<int> ids;
+  ids.reserve(6 * tris.size());
+  for (const auto& t : tris) {
+    const auto n = face_nodes(t);
+    ids.insert(ids.end(), n.begin(), n.end());
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
 std::vector<int> TetMesh::vertices() const {
   std::vector<char> used(nodes.size(), 0);
   for (const auto& t : tets)
@@ -154,7 +161,8 @@ void make_quadratic(TetMesh& m) {
       m.nodes.push_back(0.5 * (m.nodes[key.first] + m.nodes[key.second]));
     }
   // Node sets derived from faces must hold the new edge nodes too (Dirichlet sets).
-  for (const auto& [name, tris] : m.faces) m.node_sets[name] = unique_nodes(m, tris);
+  for (const auto* surfaces : {&m.faces, &m.interfaces})
+    for (const auto& [name, tris] : *surfaces) m.node_sets[name] = m.surface_nodes(tris);
 }
 
 void validate_mesh(TetMesh& m, const std::string& source) {
@@ -165,38 +173,57 @@ void validate_mesh(TetMesh& m, const std::string& source) {
   check_tets(m, source);
   check_edges(m, source);
   check_regions(m, source);
-  for (auto& [name, tris] : m.faces)
-    for (std::size_t i = 0; i < tris.size(); ++i)
-      for (int n : tris[i]) check_node_index(m, n, source, fmt::format("face '{}' triangle {}", name, i));
+  for (const auto* surfaces : {&m.faces, &m.interfaces})
+    for (const auto& [name, tris] : *surfaces)
+      for (std::size_t i = 0; i < tris.size(); ++i)
+        for (int n : tris[i]) check_node_index(m, n, source, fmt::format("face '{}' triangle {}", name, i));
   for (auto& [name, ids] : m.node_sets)
     for (int n : ids) check_node_index(m, n, source, fmt::format("node set '{}'", name));
-  // An explicitly given node set wins over the one derived from a face of the same name.
-  for (const auto& [name, tris] : m.faces)
-    if (!m.node_sets.count(name)) m.node_sets[name] = unique_nodes(m, tris);
+  // An explicitly given node set wins over the one derived from a surface of the same name.
+  for (const auto* surfaces : {&m.faces, &m.interfaces})
+    for (const auto& [name, tris] : *surfaces)
+      if (!m.node_sets.count(name)) m.node_sets[name] = m.surface_nodes(tris);
 }
 
-void orient_faces_outward(TetMesh& m, const std::string& source) {
+void orient_named_surfaces(TetMesh& m, const std::string& source) {
   if (m.faces.empty()) return;
   for (int e = 0; e < m.num_tets(); ++e)
     for (int n : m.tets[e]) check_node_index(m, n, source, fmt::format("element {}", e));
+  check_regions(m, source);
   const auto face_map = build_face_map(m);
-  for (auto& [name, tris] : m.faces) {
+  for (auto named = m.faces.begin(); named != m.faces.end();) {
+    auto& [name, tris] = *named;
+    std::array<int, 2> first_of{-1, -1};  // first boundary, first interior triangle
     for (std::size_t i = 0; i < tris.size(); ++i) {
       auto& tri = tris[i];
       const auto it = face_map.find(sorted_key(tri));
       if (it == face_map.end())
         throw InputError(fmt::format("mesh '{}': face '{}' triangle {} (nodes {} {} {}) is not a face of any "
-                                     "tetrahedron, expected a boundary face of the volume mesh",
+                                     "tetrahedron, expected a boundary face of the volume mesh or an "
+                                     "interior face between two of its tetrahedra",
                                      source, name, i, tri[0], tri[1], tri[2]));
-      if (it->second.count != 1)
+      const FaceOwners& o = it->second;
+      if (o.count > 2)
         throw InputError(fmt::format("mesh '{}': face '{}' triangle {} (nodes {} {} {}) is shared by {} "
-                                     "tetrahedra, expected a boundary face (interior surfaces have no outside)",
-                                     source, name, i, tri[0], tri[1], tri[2], it->second.count));
+                                     "tetrahedra, expected 1 (a boundary face) or 2 (an interior face)",
+                                     source, name, i, tri[0], tri[1], tri[2], o.count));
+      int& first = first_of[o.count - 1];
+      if (first < 0) first = static_cast<int>(i);
       // Outward means the right-hand normal points away from the tet's fourth node.
       const Vec3& x0 = m.nodes[tri[0]];
       const Vec3 normal = (m.nodes[tri[1]] - x0).cross(m.nodes[tri[2]] - x0);
-      if (normal.dot(m.nodes[it->second.opposite] - x0) > 0.0) std::swap(tri[1], tri[2]);
+      if (normal.dot(m.nodes[o.opposite[side_of(m, o)]] - x0) > 0.0) std::swap(tri[1], tri[2]);
     }
+    if (first_of[0] >= 0 && first_of[1] >= 0)
+      throw InputError(fmt::format("mesh '{}': face '{}' has boundary triangle {} and interior triangle {}, "
+                                   "expected a surface wholly on the boundary or wholly inside (an interface)",
+                                   source, name, first_of[0], first_of[1]));
+    if (first_of[1] < 0) {
+      ++named;
+      continue;
+    }
+    m.interfaces[name] = std::move(tris);
+    named = m.faces.erase(named);
   }
 }
 

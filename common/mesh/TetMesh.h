@@ -1,5 +1,6 @@
 #pragma once
-// The macro mesh: tetrahedra with named node sets and named boundary faces.
+// The macro mesh: tetrahedra with named node sets, named boundary faces and named
+// interfaces (interior faces, e.g. between two regions).
 // Linear (4-node) or quadratic (10-node): a quadratic mesh keeps the four vertices of
 // each tet in `tets` (geometry, partitions and point location work on them) and adds
 // one node per edge in `edge_nodes`, which may lie off the straight edge (curved,
@@ -21,7 +22,11 @@ struct TetMesh {
   /// Named boundary surfaces as triangles, each oriented with its normal pointing
   /// out of the solid (right-hand rule on the node order).
   std::map<std::string, std::vector<std::array<int, 3>>> faces;
-  /// Named node sets (every named face also gives a node set of the same name).
+  /// Named interior surfaces as triangles, each shared by two tets and oriented with its
+  /// normal pointing from the tet of the lower region tag into the other (same region:
+  /// from the tet of the lower element index).
+  std::map<std::string, std::vector<std::array<int, 3>>> interfaces;
+  /// Named node sets (every named face and interface also gives a node set of the same name).
   std::map<std::string, std::vector<int>> node_sets;
   /// Quadratic meshes only: the node on each edge, keyed by its end vertices (smaller first).
   std::map<std::pair<int, int>, int> edge_nodes;
@@ -38,6 +43,8 @@ struct TetMesh {
   /// A face triangle's nodes: its 3 vertices, then (quadratic) edges 01, 12, 20
   /// (VTK_QUADRATIC_TRIANGLE, the order of Gmsh's 6-node triangle).
   std::vector<int> face_nodes(const std::array<int, 3>& tri) const;
+  /// The distinct face_nodes() of the triangles, ascending.
+  std::vector<int> surface_nodes(const std::vector<std::array<int, 3>>& tris) const;
   /// The distinct vertices of the tets, ascending (all nodes when linear).
   std::vector<int> vertices() const;
 };
@@ -54,11 +61,14 @@ double tet_signed_volume(const TetMesh& m, int e);
 
 /// Checks every tet has positive volume (throws fe2::InputError naming the element,
 /// its nodes and the volume, and `source` (file name or generator) otherwise), that
-/// node indices are in range, and adds a node set for each named face that has none.
+/// node indices are in range, and adds a node set for each named face and interface
+/// that has none.
 void validate_mesh(TetMesh& m, const std::string& source);
 
-/// Orients every named face triangle outward from the tet it bounds; throws
-/// InputError if a face triangle is not a boundary face of any tet.
-void orient_faces_outward(TetMesh& m, const std::string& source);
+/// Orients every named face triangle outward from the tet it bounds, and moves each
+/// named surface of interior faces from `faces` to `interfaces`, oriented as they are.
+/// Throws InputError naming the surface and triangle if a triangle is no face of any
+/// tet, or if a surface has both boundary and interior triangles.
+void orient_named_surfaces(TetMesh& m, const std::string& source);
 
 }  // namespace fe2

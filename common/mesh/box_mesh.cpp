@@ -93,7 +93,7 @@ TetMesh make_box_mesh(const Vec3& lo, const Vec3& hi, std::array<int, 3> n, int 
         }
       }
 
-  orient_faces_outward(m, kSource);
+  orient_named_surfaces(m, kSource);
   if (order == 2) make_quadratic(m);
   validate_mesh(m, kSource);
   return m;

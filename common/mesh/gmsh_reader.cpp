@@ -545,7 +545,7 @@ TetMesh read_gmsh_tets(const std::string& file) {
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   }
 
-  orient_faces_outward(m, file);
+  orient_named_surfaces(m, file);
   validate_mesh(m, file);
   return m;
 }

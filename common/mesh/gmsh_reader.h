@@ -17,8 +17,9 @@ namespace fe2 {
 ///    edge nodes go to TetMesh::edge_nodes; not both); region = first physical tag of
 ///    their volume entity (1 if it has none); region_names = names of physical volumes;
 ///  - 3-node triangles (type 2; type 9, 6-node, in a quadratic mesh) on surface entities
-///    with a named physical group become faces[name] (oriented outward, see
-///    orient_faces_outward; their node sets include the edge nodes);
+///    with a named physical group become faces[name] (boundary faces, oriented outward)
+///    or interfaces[name] (interior faces, oriented from the lower region tag), see
+///    orient_named_surfaces; their node sets include the edge nodes;
 ///  - points (type 15) on named physical points and the nodes of 2-node lines (type 1)
 ///    on named physical curves (3-node lines, type 8, in a quadratic mesh) become node_sets[name].
 /// Nodes are those of the tets, renumbered 0.. in file order. Elements of other types

@@ -126,7 +126,7 @@ TetMesh make_lv_mesh(const LvMeshParams& p) {
           }
         }
   m.region.assign(m.tets.size(), 1);
-  orient_faces_outward(m, kSource);
+  orient_named_surfaces(m, kSource);
   m.node_sets["apex_endo"] = {node_id({0, 0, 0})};
   m.node_sets["apex_epi"] = {node_id({nt, 0, 0})};
 

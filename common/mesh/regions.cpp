@@ -1,5 +1,7 @@
 #include "common/mesh/regions.h"
 
+#include "common/error.h"
+
 #include <algorithm>
 
 namespace fe2 {
@@ -16,6 +18,18 @@ std::vector<int> interface_nodes(const TetMesh& mesh, const std::vector<int>& a,
   for (int n = 0; n < mesh.num_nodes(); ++n)
     if (side[n] == 3) nodes.push_back(n);
   return nodes;
+}
+
+std::vector<int> interface_nodes(const TetMesh& mesh, const std::string& name) {
+  const auto it = mesh.interfaces.find(name);
+  if (it == mesh.interfaces.end()) {
+    std::vector<std::string> known;
+    for (const auto& [n, _] : mesh.interfaces) known.push_back(n);
+    throw InputError(fmt::format("interface '{}': the mesh has none of that name, expected one of its "
+                                 "interfaces ({})",
+                                 name, known.empty() ? "none" : fmt::format("{}", fmt::join(known, ", "))));
+  }
+  return mesh.surface_nodes(it->second);
 }
 
 }  // namespace fe2

@@ -1,5 +1,5 @@
 #pragma once
-// The collective refresh decision (`unit.solver.refresh: "collective"`, issue #11): the
+// The collective refresh decision (`unit.solver.refresh: "collective"`): the
 // adaptive policy's ski rental (worker/RefreshPolicy.h) made by the coordinators for all
 // units of one point model at once. After every Newton iteration the units' reported
 // costs are summed over the model m,
@@ -13,7 +13,7 @@
 //
 // Why collective: with one unit per worker, a unit that refreshes alone holds every other
 // worker for the length of a factorization in that iteration; units that refresh together
-// cost the farm one factorization per refresh (BENCHMARKS.md, "The refresh policy, answered").
+// cost the farm one factorization per refresh (docs/solvers.md, "How often to refactor").
 //
 // The sums are integers (flops rounded), so they are exact whatever the order of the terms:
 // the run refreshes in the same iterations on any number of ranks and coordinators.

@@ -2,6 +2,7 @@
 
 #include "common/mesh/cavity_volume.h"
 
+#include "common/circulation/beat_report.h"
 #include "common/circulation/circulation_report.h"
 #include "common/io/atomic_file.h"
 
@@ -168,7 +169,10 @@ void RunOutput::write_summary(const Simulation& sim, const RunResult& r, double 
   write(sim, r, wall, true);
 }
 
-void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bool complete) {
+namespace {
+
+/// What the run is and how far it got; probes at the current state.
+json run_status(const Simulation& sim, const RunResult& r, bool complete) {
   json s;
   s["title"] = sim.spec().title;
   s["complete"] = complete && !r.stopped;
@@ -184,147 +188,145 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
   }
   s["probes"] = probes;
   s["time"] = r.history.empty() ? 0.0 : r.history.back().time;
-  json hist = json::array();
+  return s;
+}
+
+/// Circulation-coupled cavities of one step: pressure, phase, valve flows; the compartments.
+void add_step_circulation(const Circulation& c, const StepRecord& h, json& step) {
+  const auto& names = c.cavity_names();
+  json cav = json::object();
+  const CavityFlows& f = h.circulation;
+  for (size_t k = 0; k < names.size(); ++k) {
+    json one = {{"pressure", h.cavity_pressures[k]}};
+    if (f.n > 0)
+      one.update({{"phase", f.phase[k]}, {"Q_in", f.Q_in[k]}, {"Q_out", f.Q_out[k]},
+                  {"inflow_open", static_cast<bool>(f.inflow_open[k])},
+                  {"outflow_open", static_cast<bool>(f.outflow_open[k])}});
+    cav[names[k]] = one;
+  }
+  step["circulation"] = cav;
+  if (f.n > 0) {
+    json comp = json::object();
+    const auto cn = c.compartment_names();
+    for (size_t k = 0; k < cn.size() && k < f.pressures.size(); ++k) comp[cn[k]] = f.pressures[k];
+    step["compartment_pressures"] = comp;
+  }
+}
+
+/// One entry of summary.json's history.
+json step_entry(const RunSpec& spec, const StepRecord& h) {
+  // Each macro field's residual norm per Newton iteration, under the field's name.
+  json residuals = json::object();
+  for (const auto& f : h.residuals) residuals[f.field] = f.values;
+  json step = {{"step", h.step},
+               {"time", h.time},
+               {"iterations", h.iterations},
+               {"cutbacks", h.cutbacks},
+               {"residuals", residuals},
+               {"micro_residuals", h.micro_residuals},
+               {"gmres_iterations", h.gmres_iterations},
+               {"refreshes", h.refreshes},
+               {"forced_refreshes", h.forced_refreshes},
+               {"collective_refreshes", h.collective_refreshes},
+               {"wall_seconds", h.wall_seconds}};
+  if (!h.cavity_volumes.empty()) {
+    json cav = json::object();
+    for (size_t c = 0; c < h.cavity_volumes.size(); ++c) cav[spec.cavities[c].first] = h.cavity_volumes[c];
+    step["cavity_volumes"] = cav;
+  }
+  if (!h.load_pressures.empty()) step["load_pressures"] = h.load_pressures;
+  if (!h.cavity_pressures.empty()) add_step_circulation(*spec.circulation, h, step);
+  if (!h.probes.empty()) {
+    json at = json::object();
+    for (size_t p = 0; p < h.probes.size(); ++p)
+      at[spec.probes[p].first] = {h.probes[p][0], h.probes[p][1], h.probes[p][2]};
+    step["probes"] = at;
+  }
+  return step;
+}
+
+/// The sums over the steps that summary.json reports for the whole run.
+struct RunTotals {
   int gmres = 0, refreshes = 0, forced_refreshes = 0, collective_refreshes = 0;
   double micro_cpu = 0.0;
   int evictions = 0, rebuilds = 0;
   double rebuild_cpu = 0.0;
-  for (const auto& h : r.history) {
-    // Each macro field's residual norm per Newton iteration, under the field's name.
-    json residuals = json::object();
-    for (const auto& f : h.residuals) residuals[f.field] = f.values;
-    hist.push_back({{"step", h.step},
-                    {"time", h.time},
-                    {"iterations", h.iterations},
-                    {"cutbacks", h.cutbacks},
-                    {"residuals", residuals},
-                    {"micro_residuals", h.micro_residuals},
-                    {"gmres_iterations", h.gmres_iterations},
-                    {"refreshes", h.refreshes},
-                    {"forced_refreshes", h.forced_refreshes},
-                    {"collective_refreshes", h.collective_refreshes},
-                    {"wall_seconds", h.wall_seconds}});
-    if (!h.cavity_volumes.empty()) {
-      json cav = json::object();
-      for (size_t c = 0; c < h.cavity_volumes.size(); ++c) cav[sim.spec().cavities[c].first] = h.cavity_volumes[c];
-      hist.back()["cavity_volumes"] = cav;
-    }
-    if (!h.load_pressures.empty()) hist.back()["load_pressures"] = h.load_pressures;
-    if (!h.cavity_pressures.empty()) {
-      // Circulation-coupled cavities: pressure, phase, valve flows; the compartments.
-      const auto& names = sim.spec().circulation->cavity_names();
-      json cav = json::object();
-      const CavityFlows& f = h.circulation;
-      for (size_t c = 0; c < names.size(); ++c) {
-        json one = {{"pressure", h.cavity_pressures[c]}};
-        if (f.n > 0)
-          one.update({{"phase", f.phase[c]}, {"Q_in", f.Q_in[c]}, {"Q_out", f.Q_out[c]},
-                      {"inflow_open", static_cast<bool>(f.inflow_open[c])},
-                      {"outflow_open", static_cast<bool>(f.outflow_open[c])}});
-        cav[names[c]] = one;
-      }
-      hist.back()["circulation"] = cav;
-      if (f.n > 0) {
-        json comp = json::object();
-        const auto cn = sim.spec().circulation->compartment_names();
-        for (size_t k = 0; k < cn.size() && k < f.pressures.size(); ++k) comp[cn[k]] = f.pressures[k];
-        hist.back()["compartment_pressures"] = comp;
-      }
-    }
-    if (!h.probes.empty()) {
-      json at = json::object();
-      for (size_t p = 0; p < h.probes.size(); ++p)
-        at[sim.spec().probes[p].first] = {h.probes[p][0], h.probes[p][1], h.probes[p][2]};
-      hist.back()["probes"] = at;
-    }
-    gmres += h.gmres_iterations;
-    refreshes += h.refreshes;
-    forced_refreshes += h.forced_refreshes;
-    collective_refreshes += h.collective_refreshes;
-    micro_cpu += h.micro_cpu_seconds;
-    evictions += h.factor_evictions;
-    rebuilds += h.factor_rebuilds;
-    rebuild_cpu += h.factor_rebuild_cpu_seconds;
+};
+
+RunTotals run_totals(const std::vector<StepRecord>& history) {
+  RunTotals t;
+  for (const auto& h : history) {
+    t.gmres += h.gmres_iterations;
+    t.refreshes += h.refreshes;
+    t.forced_refreshes += h.forced_refreshes;
+    t.collective_refreshes += h.collective_refreshes;
+    t.micro_cpu += h.micro_cpu_seconds;
+    t.evictions += h.factor_evictions;
+    t.rebuilds += h.factor_rebuilds;
+    t.rebuild_cpu += h.factor_rebuild_cpu_seconds;
   }
-  s["history"] = hist;
-  // Per cavity: its surface, the pressure loads on it (the pressure–volume curve of
-  // history[*].load_pressures against history[*].cavity_volumes), reference and current volume.
+  return t;
+}
+
+/// Per cavity: its surface, the pressure loads on it (the pressure–volume curve of
+/// history[*].load_pressures against history[*].cavity_volumes), reference and current volume.
+json cavity_entries(const RunSpec& spec, const std::vector<double>& reference_volumes,
+                    const std::vector<double>& now) {
   json cavities = json::object();
-  const auto& spec = sim.spec();
-  const std::vector<double> now = sim.cavity_volumes();
   for (size_t c = 0; c < spec.cavities.size(); ++c) {
     json loads = json::array();
     for (size_t p = 0; p < spec.pressure.size(); ++p)
       if (spec.pressure[p].surface == spec.cavities[c].second) loads.push_back(p);
     cavities[spec.cavities[c].first] = {{"surface", spec.cavities[c].second},
                                         {"pressure_loads", loads},
-                                        {"reference_volume", reference_volumes_[c]},
+                                        {"reference_volume", reference_volumes[c]},
                                         {"volume", now[c]}};
   }
-  if (spec.circulation && r.history.size() >= 2) {  // figures need a window of two steps
-    // The beat through the circulation's eyes: circulation.csv (as `fe2heart circulation`
-    // writes it, so tools/pv_loop_plot.py draws pv_loop.png) and the figures of the last
-    // period (or of the whole run, if shorter).
-    const Circulation& c = *spec.circulation;
-    std::vector<CirculationSample> run(1);
-    run[0].p.assign(c.cavities(), 0.0);
-    for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(reference_volumes_[spec.coupled_cavities[k]]);
-    for (const auto& h : r.history) {
-      if (h.circulation.n == 0) break;  // a failed last step
-      CirculationSample x;
-      x.t = h.time;
-      x.p = h.cavity_pressures;
-      for (int k = 0; k < c.cavities(); ++k) x.V.push_back(h.cavity_volumes[spec.coupled_cavities[k]]);
-      x.flows = h.circulation;
-      x.blood_volume = 0.0;
-      for (double v : h.circulation.volumes) x.blood_volume += v;
-      for (double v : x.V) x.blood_volume += v;
-      x.newton_iterations = h.circulation.newton_iterations;
-      run.push_back(std::move(x));
-    }
-    if (run.size() >= 3) {  // a window of at least two steps
-      const double period = c.period(), t_end = run.back().t;
-      // The window: the last period, or the whole run without its unloaded initial state.
-      size_t first = 1;
-      while (first + 1 < run.size() && run[first + 1].t <= t_end - period + 1e-9 * period) ++first;
-      const int per_beat = static_cast<int>(std::lround(period / (t_end / static_cast<double>(run.size() - 1))));
-      const int beats = per_beat > 0 ? static_cast<int>((run.size() - 1) / static_cast<size_t>(per_beat)) : 0;
-      s["circulation"] = {{"description", c.description()},
-                          {"beats_run", beats},
-                          {"periodic", r.periodic},
-                          {"EDV_change_last_beat", r.edv_change},
-                          {"figures_over", t_end >= period * (1 - 1e-9) ? "the last period" : "the whole run (shorter than a period)"},
-                          {"period", period},
-                          {"cavities", cavity_figures(c, run, first, run.size() - 1, beats, per_beat)}};
-      // Systole: the step of peak LV pressure in the window ("lv", else the first cavity),
-      // numbered as displacement_<step>.vtu and units/unit_<id>_<step>.vtu are.
-      const auto& names = c.cavity_names();
-      const size_t lv = std::find(names.begin(), names.end(), "lv") != names.end()
-                            ? static_cast<size_t>(std::find(names.begin(), names.end(), "lv") - names.begin())
-                            : 0;
-      size_t systole = first;
-      for (size_t i = first; i < run.size(); ++i)
-        if (run[i].p[lv] > run[systole].p[lv]) systole = i;
-      s["circulation"]["systole_step"] = systole;
-      s["circulation"]["systole_time"] = run[systole].t;
-      s["circulation"]["systole_cavity"] = names[lv];
-    }
-    if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(c, run));
+  return cavities;
+}
+
+/// The coupled cavities' samples as `fe2heart circulation` has them: the undeformed
+/// state at rest, then one per step up to a failed last step (which has no flows).
+std::vector<CirculationSample> circulation_samples(const RunSpec& spec, const std::vector<StepRecord>& history,
+                                                   const std::vector<double>& reference_volumes) {
+  const Circulation& c = *spec.circulation;
+  std::vector<CirculationSample> run(1);
+  run[0].p.assign(c.cavities(), 0.0);
+  for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(reference_volumes[spec.coupled_cavities[k]]);
+  for (const auto& h : history) {
+    if (h.circulation.n == 0) break;
+    CirculationSample x;
+    x.t = h.time;
+    x.p = h.cavity_pressures;
+    for (int k = 0; k < c.cavities(); ++k) x.V.push_back(h.cavity_volumes[spec.coupled_cavities[k]]);
+    x.flows = h.circulation;
+    x.blood_volume = 0.0;
+    for (double v : h.circulation.volumes) x.blood_volume += v;
+    for (double v : x.V) x.blood_volume += v;
+    x.newton_iterations = h.circulation.newton_iterations;
+    run.push_back(std::move(x));
   }
-  if (!spec.cavities.empty()) s["cavities"] = cavities;
-  s["gmres_iterations"] = gmres;
-  s["refreshes"] = refreshes;
-  s["forced_refreshes"] = forced_refreshes;  // iterations all units refactored because Newton stalled
-  s["collective_refreshes"] = collective_refreshes;  // refresh "collective": iterations × models refactored together
-  s["micro_cpu_seconds"] = micro_cpu;
+  return run;
+}
+
+/// The solver's and the farm's account of the run.
+void add_solver_figures(const Simulation& sim, const RunTotals& t, json& s) {
+  s["gmres_iterations"] = t.gmres;
+  s["refreshes"] = t.refreshes;
+  s["forced_refreshes"] = t.forced_refreshes;  // iterations all units refactored because Newton stalled
+  s["collective_refreshes"] = t.collective_refreshes;  // refresh "collective": iterations × models refactored together
+  s["micro_cpu_seconds"] = t.micro_cpu;
   // farm.factor_memory_budget: how often ranks dropped a unit's factor to stay within it,
   // and how often (and at what CPU cost) a dropped factor was rebuilt on a later job.
   const FarmOptions& farm = sim.spec().farm;
   s["factor_memory"] = {{"budget_bytes", farm.factor_memory_budget > 0 ? json(farm.factor_memory_budget) : json()},
-                        {"evictions", evictions},
-                        {"rebuilds", rebuilds},
-                        {"rebuild_cpu_seconds", rebuild_cpu}};
-  s["wall_seconds"] = wall;
+                        {"evictions", t.evictions},
+                        {"rebuilds", t.rebuilds},
+                        {"rebuild_cpu_seconds", t.rebuild_cpu}};
+}
+
+/// The macro problem's size and solver.
+void add_macro_figures(const Simulation& sim, json& s) {
   s["points"] = sim.points().size();
   s["elements"] = sim.spec().mesh.num_tets();
   s["element_order"] = sim.spec().mesh.order();
@@ -338,6 +340,33 @@ void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bo
                        {"factorizations", ms.factorizations},
                        {"kept_factor_solves", ms.reused},
                        {"gmres_iterations", ms.gmres_iterations}};
+}
+
+}  // namespace
+
+void RunOutput::write_circulation(const RunSpec& spec, const RunResult& r, bool complete, json& s) const {
+  // circulation.csv is what `fe2heart circulation` writes, so tools/pv_loop_plot.py draws
+  // pv_loop.png from either; the figures need a window of two steps.
+  const std::vector<CirculationSample> run = circulation_samples(spec, r.history, reference_volumes_);
+  if (run.size() >= 3) {
+    s["circulation"] = beat_report(*spec.circulation, run);
+    s["circulation"]["periodic"] = r.periodic;
+    s["circulation"]["EDV_change_last_beat"] = r.edv_change;
+  }
+  if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(*spec.circulation, run));
+}
+
+void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bool complete) {
+  const RunSpec& spec = sim.spec();
+  json s = run_status(sim, r, complete);
+  json hist = json::array();
+  for (const auto& h : r.history) hist.push_back(step_entry(spec, h));
+  s["history"] = hist;
+  if (spec.circulation && r.history.size() >= 2) write_circulation(spec, r, complete, s);
+  if (!spec.cavities.empty()) s["cavities"] = cavity_entries(spec, reference_volumes_, sim.cavity_volumes());
+  add_solver_figures(sim, run_totals(r.history), s);
+  s["wall_seconds"] = wall;
+  add_macro_figures(sim, s);
   if (pvd_) s["fields"] = fs::path(pvd_path()).filename().string();
   write_file_atomically(dir_ + "/summary.json", s.dump(2) + "\n");
 }

@@ -63,6 +63,8 @@ class RunOutput {
 
  private:
   void write(const Simulation& sim, const RunResult& result, double wall_seconds, bool complete);
+  /// summary.json's "circulation" (beat_report.h) into `s`; with `complete` also circulation.csv.
+  void write_circulation(const RunSpec& spec, const RunResult& result, bool complete, json& s) const;
   std::string dir_;
   std::unique_ptr<PvdWriter> pvd_;
   RunResult progress_;  ///< the steps so far, for write_progress

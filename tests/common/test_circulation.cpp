@@ -1,4 +1,4 @@
-// The 0D circulation (common/circulation/, issue #10): the Windkessel against its exact
+// The 0D circulation (common/circulation/): the Windkessel against its exact
 // solutions, blood conservation of the closed loop, the valves and phases of a beat, the
 // exact Jacobian ∂Q_net/∂p the wall coupling uses, a periodic physiological beat, and
 // refused input. Units: Pa, mm³, s.

@@ -5,10 +5,12 @@
 #include "common/mesh/box_mesh.h"
 #include "common/mesh/gmsh_reader.h"
 #include "common/mesh/point_locator.h"
+#include "common/mesh/regions.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -221,11 +223,11 @@ TEST(TetMesh, ValidateAddsFaceNodeSetsButKeepsGivenOnes) {
 TEST(TetMesh, OrientFlipsInwardFacesAndRejectsNonFaces) {
   TetMesh m = unit_tet();
   m.faces["bottom"] = {{0, 1, 2}};  // normal +z points into the tet
-  orient_faces_outward(m, "gen");
+  orient_named_surfaces(m, "gen");
   EXPECT_LT(normal(m, m.faces["bottom"][0]).z(), 0.0);
   m.nodes.push_back(Vec3(1, 1, 1));
   m.faces["stray"] = {{1, 2, 4}};
-  const std::string msg = input_error([&] { orient_faces_outward(m, "gen"); });
+  const std::string msg = input_error([&] { orient_named_surfaces(m, "gen"); });
   EXPECT_NE(msg.find("face 'stray' triangle 0 (nodes 1 2 4) is not a face"), std::string::npos) << msg;
 }
 
@@ -283,6 +285,75 @@ TEST(GmshReader, ReportsUnknownNodeWithLine) {
   write_text(file, text);
   const std::string msg = input_error([&] { read_gmsh_tets(file.string()); });
   EXPECT_NE(msg.find("line 60: element 7 uses node tag 16"), std::string::npos) << msg;
+}
+
+// Two tets sharing the face of node tags 2 3 4: tet 1 (tags 1 2 3 4) in physical volume 7
+// "left", tet 2 (tags 2 3 4 5) in `right_tag`; the triangles of physical surface 8
+// "septum" as node tags (tag n is node n - 1).
+std::string two_region_msh(int right_tag, const std::vector<std::array<int, 3>>& septum) {
+  std::string text = fmt::format(
+      "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"
+      "$PhysicalNames\n3\n2 8 \"septum\"\n3 7 \"left\"\n3 {0} \"right\"\n$EndPhysicalNames\n"
+      "$Entities\n0 0 1 2\n1 0 0 0 1 1 1 1 8 0\n1 0 0 0 1 1 1 1 7 0\n2 0 0 0 1 1 1 1 {0} 0\n$EndEntities\n"
+      "$Nodes\n1 5 1 5\n3 1 0 5\n1\n2\n3\n4\n5\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n$EndNodes\n"
+      "$Elements\n3 {1} 1 {1}\n2 1 2 {2}\n",
+      right_tag, septum.size() + 2, septum.size());
+  int tag = 1;
+  for (const auto& t : septum) text += fmt::format("{} {} {} {}\n", tag++, t[0], t[1], t[2]);
+  text += fmt::format("3 1 4 1\n{} 1 2 3 4\n3 2 4 1\n{} 2 3 4 5\n$EndElements\n", tag, tag + 1);
+  return text;
+}
+
+TEST(GmshReader, NamedInteriorSurfaceIsAnInterfaceFromTheLowerRegion) {
+  const ScratchDir dir;
+  write_text(dir / "septum.msh", two_region_msh(1, {{2, 3, 4}}));
+  const TetMesh m = read_gmsh_tets((dir / "septum.msh").string());
+  EXPECT_EQ(m.region, (std::vector<int>{7, 1}));
+  EXPECT_EQ(m.faces.count("septum"), 0u);
+  ASSERT_EQ(m.interfaces.count("septum"), 1u);
+  const auto& tris = m.interfaces.at("septum");
+  ASSERT_EQ(tris.size(), 1u);
+  std::array<int, 3> sorted = tris[0];
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(sorted, (std::array<int, 3>{1, 2, 3}));
+  // From region 1 (tet 1, on the far side from the origin) into region 7 (tet 0): the
+  // file's normal (1, 1, 1) is flipped.
+  EXPECT_LT(normal(m, tris[0]).dot(Vec3(1, 1, 1)), 0.0);
+  EXPECT_EQ(m.node_sets.at("septum"), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(interface_nodes(m, "septum"), (std::vector<int>{1, 2, 3}));
+  EXPECT_EQ(interface_nodes(m, std::vector<int>{1}, std::vector<int>{7}), (std::vector<int>{1, 2, 3}));
+  const std::string msg = input_error([&] { interface_nodes(m, "wall"); });
+  EXPECT_NE(msg.find("interface 'wall': the mesh has none of that name, expected one of its interfaces (septum)"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(GmshReader, InterfaceWithinOneRegionIsOrientedFromTheFirstTet) {
+  const ScratchDir dir;
+  write_text(dir / "one_region.msh", two_region_msh(7, {{2, 4, 3}}));
+  const TetMesh m = read_gmsh_tets((dir / "one_region.msh").string());
+  EXPECT_EQ(m.region, (std::vector<int>{7, 7}));
+  ASSERT_EQ(m.interfaces.at("septum").size(), 1u);
+  // Out of tet 0, the one at the origin: the file's normal −(1, 1, 1) is flipped.
+  EXPECT_GT(normal(m, m.interfaces.at("septum")[0]).dot(Vec3(1, 1, 1)), 0.0);
+}
+
+TEST(GmshReader, NamedTriangleOffTheMeshOrHalfInsideIsRefused) {
+  const ScratchDir dir;
+  const std::string off = (dir / "off.msh").string(), half = (dir / "half.msh").string();
+  write_text(off, two_region_msh(1, {{1, 2, 5}}));
+  std::string msg = input_error([&] { read_gmsh_tets(off); });
+  EXPECT_NE(msg.find("mesh '" + off + "': face 'septum' triangle 0 (nodes 0 1 4) is not a face of any "
+                     "tetrahedron, expected a boundary face of the volume mesh or an interior face "
+                     "between two of its tetrahedra"),
+            std::string::npos)
+      << msg;
+  write_text(half, two_region_msh(1, {{2, 3, 4}, {1, 2, 3}}));
+  msg = input_error([&] { read_gmsh_tets(half); });
+  EXPECT_NE(msg.find("mesh '" + half + "': face 'septum' has boundary triangle 1 and interior triangle 0, "
+                     "expected a surface wholly on the boundary or wholly inside (an interface)"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(GmshReader, NoTetsInHexFile) {

@@ -1,4 +1,4 @@
-// Issue #9: the myocardium at a material point (common/materials/Myocardium.h): passive
+// The myocardium at a material point (common/materials/Myocardium.h): passive
 // law + active stress S_a = T_a[(1 − n_t) f₀⊗f₀ + n_t I] + Kelvin–Voigt η Ė. Its two
 // tangents (∂Π/∂Z at fixed Ż, ∂Π/∂Ż at fixed Z, both through the cell-state update)
 // equal central finite differences; its pieces equal their formulas.

@@ -1,4 +1,4 @@
-// Issue 7, item 7: a .pvd names its VTU files relative to itself, whatever the working
+// A .pvd names its VTU files relative to itself, whatever the working
 // directory of the writer (ParaView resolves them against the .pvd's folder).
 #include "common/io/vtu_writer.h"
 

@@ -1,5 +1,5 @@
 // Reading a spec file (read_json_file): every failure is an InputError naming the file
-// and, where there is one, the key; never a crash (issue 7 items 12, 13).
+// and, where there is one, the key; never a crash.
 #include "common/error.h"
 #include "common/spec/SpecNode.h"
 

@@ -1,4 +1,4 @@
-// Issue #2, test 4: the Schur route (Eqs. 6–10, as the coordinator and units run it)
+// The Schur route (Eqs. 6–10, as the coordinator and units run it)
 // gives the same Newton increment as a direct solve of the full system of Eq. (5).
 #include "tests/coordinator/scene_fixtures.h"
 #include "tests/support/non_potential_law.h"

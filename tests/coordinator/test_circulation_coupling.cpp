@@ -1,4 +1,4 @@
-// Issue #10: an LV whose cavity pressure is an unknown of the macro system, coupled
+// An LV whose cavity pressure is an unknown of the macro system, coupled
 // strongly to a 3-element Windkessel through smooth-diode valves (CavityPressureTerm).
 // Over a beat the valves are never both open, the phases come in the order of a heart
 // (filling, isovolumic contraction, ejection, isovolumic relaxation), the cavity volume
@@ -177,9 +177,9 @@ TEST(CirculationCoupling, ClosedLoopAroundTheWallConservesBloodThroughCutSteps) 
 namespace fe2 {
 namespace {
 
-// The issue's physiology check on the shipped macro-law beat (configs/lv-beat-macro.json,
+// A physiology check on the shipped macro-law beat (configs/lv-beat-macro.json,
 // one beat of 0.8 s in 80 steps, ~10 s): a human-like loop scaled to this 2.6 mL LV.
-// Measured: EDV 3411, ESV 1916 mm³ (EF 44 %), peak 16.1 kPa; the bounds are the issue's.
+// Measured: EDV 3411, ESV 1916 mm³ (EF 44 %), peak 16.1 kPa; the bounds are those of a human heart, scaled.
 TEST(HardPhysiology, DefaultMacroBeatEjectsAPhysiologicalFraction) {
   const fs::path file = fs::path(FE2_SOURCE_DIR) / "configs" / "lv-beat-macro.json";
   json j = json::parse(std::ifstream(file));

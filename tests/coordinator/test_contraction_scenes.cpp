@@ -1,4 +1,4 @@
-// Issue #9: a muscle strip that contracts. Land 2017 cross-bridges at every point
+// A muscle strip that contracts. Land 2017 cross-bridges at every point
 // (macro law, or FE² units of the same material), excited by an eikonal front from its
 // clamped end, shortens through a twitch; Newton stays quadratic at systole with the
 // unsymmetric consistent tangent (stretch and stretch-rate dependence, viscosity).

@@ -1,4 +1,4 @@
-// Issue #3, test 5, and the rebalancer: farm-sim predicts exactly the makespan the
+// The farm simulator and the rebalancer: farm-sim predicts exactly the makespan the
 // scheduler's placement gives, on a synthetic trace with known costs.
 #include "coordinator/farm/Rebalancer.h"
 #include "coordinator/farm/farm_sim.h"

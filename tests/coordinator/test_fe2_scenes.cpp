@@ -1,4 +1,4 @@
-// Issue #2, tests 5 and 6: whole FE² scenes against the macro law and against each
+// Whole FE² scenes against the macro law and against each
 // other under the solver's options.
 #include "tests/coordinator/scene_fixtures.h"
 
@@ -42,7 +42,7 @@ TEST(Fe2Scene, HomogeneousUnitsReproduceMacroLaw) {
   expect_quadratic(law.result);
 }
 
-// Issue #8: the same through the mixed P2/P1 path (4 units per quadratic tet, a
+// The same through the mixed P2/P1 path (4 units per quadratic tet, a
 // Lagrange-multiplier pressure enforcing J̄ = 1): the pressure term sees only the point's
 // P̄ and 𝔸, so FE² and the law agree to round-off, and Newton stays quadratic.
 TEST(Fe2Scene, HomogeneousUnitsReproduceMacroLawThroughMixedP2) {

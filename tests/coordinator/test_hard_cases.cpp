@@ -1,4 +1,4 @@
-// Issue #11, "hard cases that stay stable" (label hard): each scene must converge and land
+// Hard cases that stay stable (label hard): each scene must converge and land
 // within a stated tolerance of a reference — the same scene solved the expensive way, or
 // with the default time step.
 #include "common/circulation/beat_summary.h"

@@ -1,4 +1,4 @@
-// Issue #8: a near-incompressible (κ/μ ≈ 10⁴) transversely isotropic cantilever under a
+// A near-incompressible (κ/μ ≈ 10⁴) transversely isotropic cantilever under a
 // follower pressure (the geometry, law and load of Land et al. 2015, problem 1: a
 // 10 x 1 x 1 beam clamped at x = 0, Guccione C = 2 kPa, b_f = 8, b_t = 2, b_fs = 4,
 // fibres along the beam, 4 Pa on the bottom face). The displacement-only linear tet

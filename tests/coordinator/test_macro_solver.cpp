@@ -1,4 +1,4 @@
-// Issue #11: the macro factor kept across Newton iterations and steps (MacroSolver,
+// The macro factor kept across Newton iterations and steps (MacroSolver,
 // `newton.macro_solver.refresh: adaptive`). GMRES on the current S̄, preconditioned by
 // the kept MUMPS factor, solves each Newton system to 1e-12: the run takes the same Newton
 // iterations to the same answer as factoring every iteration, with fewer factorizations.

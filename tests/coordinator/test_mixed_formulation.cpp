@@ -1,4 +1,4 @@
-// Issue #8: quadratic and mixed elements. The incompressibility term's tangent against
+// Quadratic and mixed elements. The incompressibility term's tangent against
 // finite differences of its residual; manufactured solutions with the error orders of
 // P1, P2, Taylor–Hood P2/P1 and stabilized P1/P1.
 #include "common/fem/lagrange_tet.h"

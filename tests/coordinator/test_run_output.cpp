@@ -1,4 +1,4 @@
-// Issue 7, item 10: which files make a folder "an earlier run", and what --overwrite
+// Which files make a folder "an earlier run", and what --overwrite
 // removes (only fe2heart's files, never the user's).
 #include "coordinator/output/RunOutput.h"
 

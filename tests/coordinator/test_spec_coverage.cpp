@@ -7,7 +7,7 @@
 #include "common/spec/SchemaNode.h"
 #include "common/spec/spec_schemas.h"
 #include "coordinator/RunSpec.h"
-#include "worker/unit_spec.h"
+#include "tools/unit_spec.h"
 
 #include <gtest/gtest.h>
 

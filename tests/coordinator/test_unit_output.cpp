@@ -1,4 +1,4 @@
-// output.units (issue #10, paper Fig. 11): a unit's micro fields as written to
+// output.units (as in the paper's Fig. 11): a unit's micro fields as written to
 // units/unit_<id>_<step>.vtu. What a unit writes must be what it computed: the
 // displacement of a homogeneous unit is the affine Z̄·X, and the cells' stresses
 // average to the P̄ the unit reported for the step, also for cells with history and

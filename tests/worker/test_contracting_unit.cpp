@@ -1,4 +1,4 @@
-// Issue #9: contraction inside the cells of a micro unit, and at a macro-law point.
+// Contraction inside the cells of a micro unit, and at a macro-law point.
 // The cells' Gauss points carry a cell model's state (Myocardium: passive + active
 // stress + viscosity), the matrix stays passive; the unit's homogenized tangent is the
 // derivative of its equilibrated stress in Z̄ and in Ż̄, and a homogeneous contracting

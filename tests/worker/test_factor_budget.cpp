@@ -1,4 +1,4 @@
-// farm.factor_memory_budget on one rank's UnitStore (issue #11): three units, room for
+// farm.factor_memory_budget on one rank's UnitStore: three units, room for
 // two factors and a half. The least recently used factor is dropped, the dropped unit
 // rebuilds it on its next job, the counts say so, and every answer equals the run
 // without a budget bit for bit (tolerance 0: the rebuild factors the very matrix of the

@@ -1,4 +1,4 @@
-// Issue #2, tests 1–3: the homogenized response of a unit against exact answers.
+// The homogenized response of a unit against exact answers.
 #include "common/materials/Guccione.h"
 #include "tests/support/non_potential_law.h"
 #include "tests/worker/unit_fixtures.h"

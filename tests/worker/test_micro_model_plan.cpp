@@ -1,6 +1,6 @@
 // A unit model read but not built (MicroModelPlan): its memory estimate against what
-// CHOLMOD and the model really hold (issue 7 item 11), and materials assigned by the
-// physical names of a Gmsh cell (item 14).
+// CHOLMOD and the model really hold, and materials assigned by the
+// physical names of a Gmsh cell.
 #include "common/error.h"
 #include "common/spec/spec_schemas.h"
 #include "common/mesh/gmsh_reader.h"

@@ -1,4 +1,4 @@
-// Non-finite is failure everywhere (issue 7 item 5): a unit whose residual norm or its
+// Non-finite is failure everywhere: a unit whose residual norm or its
 // scale overflows must not "converge" on inf <= inf; it fails with a NumericalError
 // that says "non-finite", which the run turns into a cut-back and `unit` into exit 3.
 #include "tests/worker/unit_fixtures.h"

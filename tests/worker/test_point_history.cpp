@@ -1,4 +1,4 @@
-// The material-point context (issue 8, section 1): every micro Gauss point and every
+// The material-point context: every micro Gauss point and every
 // macro-law point gets t, Δt, its rate Ż and its own history, which the point model
 // commits, rolls back and serializes. The law of tests/support/history_law.h records
 // the context it was given in its history and stiffens with an internal variable α

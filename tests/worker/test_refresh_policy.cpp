@@ -1,7 +1,7 @@
 // The refresh policies (paper Fig. 6) as scripted sequences with exact answers: which
 // job refactors, given the libraries' flop counts and each job's GMRES iterations.
+#include "tools/unit_spec.h"
 #include "worker/RefreshPolicy.h"
-#include "worker/unit_spec.h"
 
 #include <gtest/gtest.h>
 

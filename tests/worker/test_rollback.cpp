@@ -1,5 +1,5 @@
-// A step that fails is rolled back and retried with a smaller increment (issue 7 item
-// 4). The retry must start from exactly the committed unit: its factor and χ, not
+// A step that fails is rolled back and retried with a smaller increment.
+// The retry must start from exactly the committed unit: its factor and χ, not
 // those computed at the failed (possibly inverted) iterate, and the adaptive policy's
 // counters as they were. Otherwise the retry's preconditioner is the failed state's and
 // the adaptive policy fails spuriously.

@@ -1,5 +1,5 @@
-// Single-precision factors as the unit's GMRES preconditioner (issue #11, the cost
-// side): the supernodal float LLᵀ and MUMPS. The answer stays the double-factor answer
+// Single-precision factors as the unit's GMRES preconditioner, cheaper than double
+// ones: the supernodal float LLᵀ and MUMPS. The answer stays the double-factor answer
 // to the GMRES tolerance, the float factor is really used (it costs GMRES iterations),
 // and the spec keys are checked.
 #include "common/error.h"

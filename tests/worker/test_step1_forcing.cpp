@@ -1,4 +1,4 @@
-// Step 1's tolerance over a Newton solve (issue #11, the cost side): with the residual
+// Step 1's tolerance over a Newton solve: with the residual
 // forcing a unit solves K δw₁ = −r only as accurately as its Newton iteration can use,
 // η = ‖r‖/r_ref within [gmres_rtol, gmres_forcing_max]. It must save GMRES iterations on
 // a kept factor without costing Newton iterations or changing the converged answer.

@@ -1,6 +1,6 @@
 // Reading a unit spec (`fe2heart unit`); its keys are declared in
 // common/spec/spec_schemas.cpp, which gives this reader their defaults and ranges.
-#include "worker/unit_spec.h"
+#include "tools/unit_spec.h"
 
 #include "common/spec/spec_schemas.h"
 
