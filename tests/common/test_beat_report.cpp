@@ -3,6 +3,7 @@
 // on a synthetic run of two cavities whose right ventricle peaks higher elsewhere.
 #include "common/circulation/beat_report.h"
 #include "common/circulation/circulation_factory.h"
+#include "common/circulation/circulation_schema.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +12,7 @@ namespace {
 
 CirculationPtr two_windkessels(double period) {
   const json j = {{"kind", "windkessel"}, {"period", period}, {"cavities", {{"lv", json::object()}, {"rv", json::object()}}}};
-  SpecNode node(j, "/circulation");
+  SpecNode node(j, "/circulation", *circulation_schema());
   return make_circulation(node);
 }
 
