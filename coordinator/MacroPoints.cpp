@@ -5,18 +5,21 @@
 
 namespace fe2 {
 
-MacroPoints::MacroPoints(const TetMesh& mesh, int degree) {
+MacroPoints::MacroPoints(const TetMesh& mesh, int degree, const std::vector<int>& elements) {
   const int order = mesh.order();
   degree_ = degree < 0 ? default_point_degree(order) : degree;
   const auto rule = tet_rule(degree_);
   per_element_ = static_cast<int>(rule.size());
   const int ne = mesh.num_tets();
+  std::vector<char> has_points(static_cast<size_t>(ne), elements.empty() ? 1 : 0);
+  for (int e : elements) has_points[static_cast<size_t>(e)] = 1;
   first_.resize(ne + 1);
   points_.reserve(static_cast<size_t>(ne) * rule.size());
   Eigen::VectorXd N;
   Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
   for (int e = 0; e < ne; ++e) {
     first_[e] = size();
+    if (!has_points[static_cast<size_t>(e)]) continue;
     const std::vector<int> nodes = mesh.element_nodes(e);
     const int n = static_cast<int>(nodes.size());
     for (const auto& q : rule) {

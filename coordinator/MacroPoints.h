@@ -1,7 +1,8 @@
 #pragma once
 // The macro integration points: one point model (FE² unit or macro law) per point.
-// Point ids are independent of element ids: points are numbered element after element,
-// the points of element e being first_point(e) .. first_point(e + 1) − 1 (a quadrature
+// Only the wall's elements have points (RunSpec::wall_elements; another region's element
+// has none). Point ids are independent of element ids: points are numbered element after
+// element, the points of element e being first_point(e) .. first_point(e + 1) − 1 (a quadrature
 // rule per element type: degree 2(order − 1), one point for linear tets, four for
 // quadratic ones, unless the spec asks for another degree).
 //
@@ -27,9 +28,10 @@ struct MacroPoint {
 
 class MacroPoints {
  public:
-  /// Points of every element of `mesh` with a tet rule of `degree` (−1: 2(order − 1)).
-  /// Throws InputError naming the element if its Jacobian is not positive at a point.
-  MacroPoints(const TetMesh& mesh, int degree = -1);
+  /// Points of the `elements` of `mesh` (ascending; empty: every element) with a tet
+  /// rule of `degree` (−1: 2(order − 1)). Throws InputError naming the element if its
+  /// Jacobian is not positive at a point.
+  MacroPoints(const TetMesh& mesh, int degree = -1, const std::vector<int>& elements = {});
 
   int size() const { return static_cast<int>(points_.size()); }
   const MacroPoint& operator[](int k) const { return points_[k]; }

@@ -25,7 +25,7 @@ PointCoupling::PointCoupling(const RunSpec& spec, PointEvaluator& evaluator, con
                              const std::vector<int>& owned_elements, const Field& u)
     : evaluator_(evaluator),
       group_(group),
-      points_(spec.mesh, spec.formulation.quadrature_degree),
+      points_(spec.mesh, spec.formulation.quadrature_degree, spec.wall_elements()),
       owned_points_(points_.points_of(owned_elements)),
       collective_(spec.model_of_points(), collective_models(spec)) {
   FE2_CHECK(points_.points_per_element() == spec.points_per_element,

@@ -10,6 +10,7 @@
 #include "common/mesh/point_locator.h"
 #include "common/fem/quadrature.h"
 #include "coordinator/MacroPoints.h"
+#include "coordinator/macro/macro_scene.h"
 #include "common/spec/spec_schemas.h"
 
 #include <algorithm>
@@ -49,6 +50,30 @@ bool RunSpec::contracts() const {
   return false;
 }
 
+double RunSpec::rtol_of(const std::string& field) const {
+  const auto it = field_rtol.find(field);
+  return it == field_rtol.end() ? newton_rtol : it->second;
+}
+
+bool RunSpec::is_wall_region(int tag) const {
+  return wall_regions.empty() || std::binary_search(wall_regions.begin(), wall_regions.end(), tag);
+}
+
+bool RunSpec::is_wall(int e) const { return is_wall_region(mesh.region[static_cast<size_t>(e)]); }
+
+std::vector<int> RunSpec::wall_elements_among(const std::vector<int>& elements) const {
+  std::vector<int> out;
+  for (int e : elements)
+    if (is_wall(e)) out.push_back(e);
+  return out;
+}
+
+std::vector<int> RunSpec::wall_elements() const {
+  std::vector<int> all(static_cast<size_t>(mesh.num_tets()));
+  for (int e = 0; e < mesh.num_tets(); ++e) all[static_cast<size_t>(e)] = e;
+  return wall_elements_among(all);
+}
+
 int RunSpec::model_index_of_tet(int e) const {
   auto it = model_of_region.find(mesh.region[e]);
   return it == model_of_region.end() ? default_model : it->second;
@@ -57,7 +82,7 @@ int RunSpec::model_index_of_tet(int e) const {
 std::vector<int> RunSpec::model_of_points() const {
   std::vector<int> m;
   m.reserve(num_points());
-  for (int e = 0; e < mesh.num_tets(); ++e) m.insert(m.end(), points_per_element, model_index_of_tet(e));
+  for (int e : wall_elements()) m.insert(m.end(), points_per_element, model_index_of_tet(e));
   return m;
 }
 
@@ -83,6 +108,73 @@ Ramp read_ramp(SpecNode& s) {
 }
 
 int axis_index(const std::string& a) { return a[0] - 'x'; }
+
+/// The region tag of `name` (a tag or a physical volume name) in the spec's mesh, or an
+/// InputError at `where` listing the regions the mesh has: a region it lacks would
+/// silently leave the elements meant for it with the default.
+int region_tag(const RunSpec& spec, const std::string& where, const std::string& name) {
+  char* end = nullptr;
+  const long t = std::strtol(name.c_str(), &end, 10);
+  int found = -1;
+  if (end && end != name.c_str() && *end == '\0') found = static_cast<int>(t);
+  for (const auto& [rt, rn] : spec.mesh.region_names)
+    if (rn == name) found = rt;
+  const std::set<int> present(spec.mesh.region.begin(), spec.mesh.region.end());
+  if (found >= 0 && present.count(found)) return found;
+  std::vector<std::string> known;  // tags, and the names of named regions
+  for (int r : present) {
+    known.push_back(std::to_string(r));
+    const auto nm = spec.mesh.region_names.find(r);
+    if (nm != spec.mesh.region_names.end()) known.push_back(nm->second);
+  }
+  throw InputError(fmt::format("{}: got region \"{}\", which is not in the mesh {}; expected {}", where, name,
+                               spec.mesh_source, known_names("one of its regions", name, known)));
+}
+
+/// mesh.wall_regions: tags or names, each once; absent: every region is wall.
+void read_wall_regions(SpecNode& m, RunSpec& spec) {
+  const json* v = m.declared_value("wall_regions");
+  if (!v) return;
+  if (!v->is_array() || v->empty()) m.fail("wall_regions", "a non-empty array of region tags or names");
+  for (size_t i = 0; i < v->size(); ++i) {
+    const json& r = (*v)[i];
+    const std::string where = fmt::format("{}/{}", m.key_path("wall_regions"), i);
+    if (!r.is_string() && !r.is_number_integer())
+      throw InputError(fmt::format("{}: got {}, expected a region tag (integer) or name (string)", where, r.dump()));
+    const int tag = region_tag(spec, where, r.is_string() ? r.get<std::string>() : r.dump());
+    if (std::find(spec.wall_regions.begin(), spec.wall_regions.end(), tag) != spec.wall_regions.end())
+      throw InputError(fmt::format("{}: got region {} twice, expected each wall region once", where, r.dump()));
+    spec.wall_regions.push_back(tag);
+  }
+  std::sort(spec.wall_regions.begin(), spec.wall_regions.end());
+}
+
+/// A Dirichlet set holds the wall where it meets it (a base plane may cross a cavity
+/// region too); one that misses the wall entirely is a mistake.
+void check_on_wall(const RunSpec& spec, const std::string& where, const std::string& name,
+                   const std::vector<int>& nodes) {
+  if (spec.wall_regions.empty()) return;
+  std::vector<char> on_wall(static_cast<size_t>(spec.mesh.num_nodes()), 0);
+  for (int e : spec.wall_elements())
+    for (int a : spec.mesh.element_nodes(e)) on_wall[static_cast<size_t>(a)] = 1;
+  for (int a : nodes)
+    if (on_wall[static_cast<size_t>(a)]) return;
+  throw InputError(fmt::format("{}: node set '{}' has no node on the wall (/mesh/wall_regions); expected a set "
+                               "that holds the wall",
+                               where, name));
+}
+
+/// A surface load or cavity must bound the wall, every triangle of it.
+void check_wall_surface(const RunSpec& spec, const std::string& where, const std::string& surface) {
+  if (spec.wall_regions.empty()) return;
+  const auto& tris = spec.mesh.faces.at(surface);
+  const std::vector<int> tet = face_elements(spec.mesh, tris);
+  for (size_t k = 0; k < tris.size(); ++k)
+    if (!spec.is_wall(tet[k]))
+      throw InputError(fmt::format("{}: surface '{}' bounds element {} of region {}, which is not in "
+                                   "/mesh/wall_regions; expected a surface of the wall",
+                                   where, surface, tet[k], spec.mesh.region[static_cast<size_t>(tet[k])]));
+}
 
 void read_mesh(SpecNode m, RunSpec& spec) {
   const std::string kind = m.choice("kind");
@@ -129,6 +221,7 @@ void read_mesh(SpecNode m, RunSpec& spec) {
     spec.mesh = read_gmsh_tets(p.string());
     spec.mesh_source = p.string();
   }
+  read_wall_regions(m, spec);
   m.finish();
 }
 
@@ -222,6 +315,10 @@ void read_formulation(SpecNode f, RunSpec& spec) {
 void read_newton(SpecNode n, RunSpec& spec) {
   spec.newton_max_iterations = n.integer("max_iterations");
   spec.newton_rtol = n.number("rtol");
+  SpecNode per_field = n.child("field_rtol");
+  for (auto it = per_field.raw().begin(); it != per_field.raw().end(); ++it)
+    spec.field_rtol[it.key()] = per_field.number(it.key());
+  per_field.finish();
   spec.micro_rtol = n.number("micro_rtol");
   spec.max_cutbacks = n.integer("max_cutbacks");
   {
@@ -280,25 +377,11 @@ void read_models(SpecNode models, SpecNode assign, RunSpec& spec) {
   for (auto it = regions.raw().begin(); it != regions.raw().end(); ++it) {
     const std::string tag = it.key();
     const std::string model = regions.string(tag);
-    char* end = nullptr;
-    const long t = std::strtol(tag.c_str(), &end, 10);
-    int found = -1;
-    if (end && *end == '\0') found = static_cast<int>(t);
-    for (const auto& [rt, rn] : spec.mesh.region_names)
-      if (rn == tag) found = rt;
-    // A region the mesh lacks would silently leave its intended elements on the default.
-    std::set<int> present(spec.mesh.region.begin(), spec.mesh.region.end());
-    if (found < 0 || !present.count(found)) {
-      std::vector<std::string> known;  // tags, and the names of named regions
-      for (int r : present) {
-        known.push_back(std::to_string(r));
-        const auto nm = spec.mesh.region_names.find(r);
-        if (nm != spec.mesh.region_names.end()) known.push_back(nm->second);
-      }
-      throw InputError(fmt::format("{}/{}: got region \"{}\", which is not in the mesh {}; expected {}",
-                                   regions.path(), tag, tag, spec.mesh_source,
-                                   known_names("one of its regions", tag, known)));
-    }
+    const int found = region_tag(spec, regions.key_path(tag), tag);
+    if (!spec.is_wall_region(found))
+      throw InputError(fmt::format("{}: got region \"{}\", which is not in /mesh/wall_regions; expected a wall "
+                                   "region (only the wall has point models)",
+                                   regions.key_path(tag), tag));
     spec.model_of_region[found] = index_of(regions, tag, model);
   }
   regions.finish();
@@ -337,6 +420,147 @@ std::vector<int> read_output_units(SpecNode& out, const RunSpec& spec) {
   return units;
 }
 
+/// An eikonal front follows the fibres: the frame field is built now (and kept, so the
+/// macro side does not solve a rule's Laplace problems twice).
+void read_activation_of(SpecNode& root, RunSpec& spec) {
+  if (!root.has("activation")) return;
+  spec.frame.built = make_frame_field(spec.frame.field, spec.mesh);
+  const bool gmsh = spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
+  SpecNode activation = root.child("activation");
+  spec.activation = read_activation(activation, spec.mesh, spec.frame.built.get(), spec.base_dir,
+                                    gmsh ? spec.mesh_source : "");
+}
+
+void read_dirichlet(SpecNode& root, RunSpec& spec) {
+  for (auto& d : root.children("dirichlet")) {
+    DirichletSpec ds;
+    ds.set = d.string("set");
+    if (!spec.mesh.node_sets.count(ds.set))
+      d.fail("set", known_names("a node set of the mesh", ds.set, names_of(spec.mesh.node_sets)));
+    check_on_wall(spec, d.key_path("set"), ds.set, spec.mesh.node_sets.at(ds.set));
+    const auto comps = d.numbers("components");
+    ds.fixed = {false, false, false};
+    for (double c : comps) ds.fixed[static_cast<int>(c)] = true;  // integers in [0, 2] (the schema)
+    ds.value = vec3(d, "value");
+    ds.ramp = read_ramp(d);
+    d.finish();
+    spec.dirichlet.push_back(ds);
+  }
+  if (spec.dirichlet.empty())
+    throw InputError("/dirichlet: got nothing, expected at least one Dirichlet condition "
+                     "(a free body has no unique quasi-static solution)");
+}
+
+void read_pressure(SpecNode& root, RunSpec& spec) {
+  for (auto& p : root.children("pressure")) {
+    PressureSpec ps;
+    ps.surface = p.string("surface");
+    if (!spec.mesh.faces.count(ps.surface))
+      p.fail("surface", known_names("a named surface of the mesh", ps.surface, names_of(spec.mesh.faces)));
+    check_wall_surface(spec, p.key_path("surface"), ps.surface);
+    ps.value = p.number("value");
+    ps.ramp = read_ramp(p);
+    p.finish();
+    spec.pressure.push_back(ps);
+  }
+}
+
+void read_time(SpecNode t, RunSpec& spec) {
+  spec.t_end = t.number("t_end");
+  spec.steps = t.integer("steps");
+  spec.dynamic = t.choice("scheme") == "newmark";
+  spec.beta = t.number("beta");
+  spec.gamma = t.number("gamma");
+  spec.density = t.number("density");
+  spec.beats = t.integer("beats");
+  spec.steps_per_beat = t.integer("steps_per_beat");
+  spec.periodic_tolerance = t.number("periodic_tolerance");
+  if (spec.beats > 0 && (t.has("t_end") || t.has("steps")))
+    t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
+  t.finish();
+}
+
+void read_cavities(SpecNode cavities, RunSpec& spec) {
+  for (auto it = cavities.raw().begin(); it != cavities.raw().end(); ++it) {
+    SpecNode c = cavities.child(it.key());
+    const std::string surface = c.string("surface");
+    if (!spec.mesh.faces.count(surface))
+      c.fail("surface", known_names("a named surface of the mesh", surface, names_of(spec.mesh.faces)));
+    check_wall_surface(spec, c.key_path("surface"), surface);
+    c.finish();
+    spec.cavities.emplace_back(it.key(), surface);
+  }
+  cavities.finish();
+}
+
+/// The 0D circulation and the cavities it couples (by name, from /cavities).
+void read_circulation(SpecNode& root, RunSpec& spec) {
+  if (!root.has("circulation")) return;
+  SpecNode circ = root.child("circulation");
+  spec.circulation = make_circulation(circ);
+  for (const std::string& name : spec.circulation->cavity_names()) {
+    int found = -1;
+    for (size_t c = 0; c < spec.cavities.size(); ++c)
+      if (spec.cavities[c].first == name) found = static_cast<int>(c);
+    if (found < 0) {
+      throw InputError(fmt::format(
+          "/circulation/cavities/{}: no cavity '{}' in /cavities; expected {} (every cavity of the "
+          "circulation needs its bounding surface there)",
+          name, name, known_names("a cavity of /cavities", name, names_of(spec.cavities))));
+    }
+    spec.coupled_cavities.push_back(found);
+  }
+  if (spec.beats > 0) {
+    spec.t_end = spec.beats * spec.circulation->period();
+    spec.steps = spec.beats * spec.steps_per_beat;
+  }
+  warn_on_calcium_period(spec);
+  for (const auto& ps : spec.pressure)
+    for (int c : spec.coupled_cavities)
+      if (ps.surface == spec.cavities[c].second)
+        throw InputError(fmt::format("/pressure: a prescribed pressure on '{}', the surface of cavity '{}' "
+                                     "whose pressure the circulation sets; expected no /pressure entry there",
+                                     ps.surface, spec.cavities[c].first));
+}
+
+void read_probes(SpecNode probes, RunSpec& spec) {
+  for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {
+    const std::string name = it.key();
+    const Vec3 X = vec3(probes, name);
+    bool in_wall = false;
+    try {
+      in_wall = spec.is_wall(locate_point(spec.mesh, X).tet);
+    } catch (const InputError&) {
+      probes.fail(name, "a point inside the mesh");
+    }
+    if (!in_wall) probes.fail(name, "a point inside the wall (/mesh/wall_regions)");
+    spec.probes.emplace_back(name, X);
+  }
+  probes.finish();
+}
+
+void read_output(SpecNode out, RunSpec& spec) {
+  spec.output_every = out.integer("every");
+  spec.write_vtu = out.boolean("vtu");
+  spec.output_units = read_output_units(out, spec);
+  spec.checkpoint_every = out.integer("checkpoint_every");
+  spec.checkpoint_factors = out.boolean("checkpoint_factors");
+  out.finish();
+}
+
+/// A tolerance for a field this scene lacks would be ignored without a word.
+void check_field_tolerances(const RunSpec& spec) {
+  if (spec.field_rtol.empty()) return;
+  const FieldTable fields = scene_fields(spec);
+  std::vector<std::string> names;
+  for (const Field& f : fields) names.push_back(f.name());
+  for (const auto& [name, _] : spec.field_rtol)
+    if (!fields.find(name))
+      throw InputError(fmt::format("/newton/field_rtol/{}: got field \"{}\", which this scene does not have; "
+                                   "expected {}",
+                                   name, name, known_names("one of its macro fields", name, names)));
+}
+
 }  // namespace
 
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool build_units) {
@@ -350,133 +574,33 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   root.string("description");
   read_mesh(root.child("mesh"), spec);
   read_frame(root.child("frame"), spec);
-  if (root.has("activation")) {
-    // An eikonal front follows the fibres: the frame field is built now (and kept, so
-    // the macro side does not solve a rule's Laplace problems twice).
-    spec.frame.built = make_frame_field(spec.frame.field, spec.mesh);
-    const bool gmsh = spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
-    SpecNode activation = root.child("activation");
-    spec.activation = read_activation(activation, spec.mesh, spec.frame.built.get(), spec.base_dir,
-                                      gmsh ? spec.mesh_source : "");
-  }
+  read_activation_of(root, spec);
   read_formulation(root.child("formulation"), spec);
   read_newton(root.child("newton"), spec);
   read_models(root.child("models"), root.child("assign"), spec);
 
-  for (auto& d : root.children("dirichlet")) {
-    DirichletSpec ds;
-    ds.set = d.string("set");
-    if (!spec.mesh.node_sets.count(ds.set))
-      d.fail("set", known_names("a node set of the mesh", ds.set, names_of(spec.mesh.node_sets)));
-    const auto comps = d.numbers("components");
-    ds.fixed = {false, false, false};
-    for (double c : comps) ds.fixed[static_cast<int>(c)] = true;  // integers in [0, 2] (the schema)
-    ds.value = vec3(d, "value");
-    ds.ramp = read_ramp(d);
-    d.finish();
-    spec.dirichlet.push_back(ds);
-  }
-  if (spec.dirichlet.empty())
-    throw InputError("/dirichlet: got nothing, expected at least one Dirichlet condition "
-                     "(a free body has no unique quasi-static solution)");
-  for (auto& p : root.children("pressure")) {
-    PressureSpec ps;
-    ps.surface = p.string("surface");
-    if (!spec.mesh.faces.count(ps.surface))
-      p.fail("surface", known_names("a named surface of the mesh", ps.surface, names_of(spec.mesh.faces)));
-    ps.value = p.number("value");
-    ps.ramp = read_ramp(p);
-    p.finish();
-    spec.pressure.push_back(ps);
-  }
-
-  SpecNode t = root.child("time");
-  spec.t_end = t.number("t_end");
-  spec.steps = t.integer("steps");
-  spec.dynamic = t.choice("scheme") == "newmark";
-  spec.beta = t.number("beta");
-  spec.gamma = t.number("gamma");
-  spec.density = t.number("density");
-  spec.beats = t.integer("beats");
-  spec.steps_per_beat = t.integer("steps_per_beat");
-  spec.periodic_tolerance = t.number("periodic_tolerance");
-  if (spec.beats > 0 && (t.has("t_end") || t.has("steps")))
-    t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
-  t.finish();
-
+  read_dirichlet(root, spec);
+  read_pressure(root, spec);
+  read_time(root.child("time"), spec);
   if (build_units) build_unit_models(spec);  // after the cheap checks above
 
-  SpecNode cavities = root.child("cavities");
-  for (auto it = cavities.raw().begin(); it != cavities.raw().end(); ++it) {
-    SpecNode c = cavities.child(it.key());
-    const std::string surface = c.string("surface");
-    if (!spec.mesh.faces.count(surface))
-      c.fail("surface", known_names("a named surface of the mesh", surface, names_of(spec.mesh.faces)));
-    c.finish();
-    spec.cavities.emplace_back(it.key(), surface);
-  }
-  cavities.finish();
-
-  if (root.has("circulation")) {
-    SpecNode circ = root.child("circulation");
-    spec.circulation = make_circulation(circ);
-    for (const std::string& name : spec.circulation->cavity_names()) {
-      int found = -1;
-      for (size_t c = 0; c < spec.cavities.size(); ++c)
-        if (spec.cavities[c].first == name) found = static_cast<int>(c);
-      if (found < 0) {
-        throw InputError(fmt::format(
-            "/circulation/cavities/{}: no cavity '{}' in /cavities; expected {} (every cavity of the "
-            "circulation needs its bounding surface there)",
-            name, name, known_names("a cavity of /cavities", name, names_of(spec.cavities))));
-      }
-      spec.coupled_cavities.push_back(found);
-    }
-    if (spec.beats > 0) {
-      spec.t_end = spec.beats * spec.circulation->period();
-      spec.steps = spec.beats * spec.steps_per_beat;
-    }
-    warn_on_calcium_period(spec);
-    for (const auto& ps : spec.pressure)
-      for (int c : spec.coupled_cavities)
-        if (ps.surface == spec.cavities[c].second)
-          throw InputError(fmt::format("/pressure: a prescribed pressure on '{}', the surface of cavity '{}' "
-                                       "whose pressure the circulation sets; expected no /pressure entry there",
-                                       ps.surface, spec.cavities[c].first));
-  }
-
+  read_cavities(root.child("cavities"), spec);
+  read_circulation(root, spec);
   if (spec.beats > 0 && !spec.circulation)
     throw InputError(fmt::format("/time/beats: got {}, expected 0 without a /circulation (a beat lasts its period)",
                                  spec.beats));
 
-  SpecNode probes = root.child("probes");
-  for (auto it = probes.raw().begin(); it != probes.raw().end(); ++it) {
-    const std::string name = it.key();
-    const Vec3 X = vec3(probes, name);
-    try {
-      locate_point(spec.mesh, X);
-    } catch (const InputError&) {
-      probes.fail(name, "a point inside the mesh");
-    }
-    spec.probes.emplace_back(name, X);
-  }
-  probes.finish();
-
+  read_probes(root.child("probes"), spec);
   spec.farm = FarmOptions::from_spec(root.child("farm"));
   spec.farm.check_factor_budget(spec.models, spec.model_of_points());
 
-  SpecNode out = root.child("output");
-  spec.output_every = out.integer("every");
-  spec.write_vtu = out.boolean("vtu");
-  spec.output_units = read_output_units(out, spec);
-  spec.checkpoint_every = out.integer("checkpoint_every");
-  spec.checkpoint_factors = out.boolean("checkpoint_factors");
-  out.finish();
+  read_output(root.child("output"), spec);
   root.finish();
   const std::string canonical = j.dump();
   Fnv1a hash;
   hash.add(canonical.data(), canonical.size());
   spec.hash = hash.value();
+  check_field_tolerances(spec);
   return spec;
 }
 

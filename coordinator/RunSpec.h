@@ -82,6 +82,10 @@ struct RunSpec {
 
   TetMesh mesh;
   std::string mesh_source;
+  /// Region tags of the solid wall (mesh.wall_regions; empty: every region). Only its
+  /// elements carry the displacement, the pressure and the point models (FE² units);
+  /// other regions are left to the fields that live there.
+  std::vector<int> wall_regions;  ///< ascending
   FrameSpec frame;
   /// When each point's cells are excited ("activation"); null: all at t = 0.
   std::shared_ptr<const ActivationField> activation;
@@ -105,6 +109,9 @@ struct RunSpec {
 
   int newton_max_iterations = 0;
   double newton_rtol = 0;         ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)
+  /// newton.field_rtol: macro field name -> its tolerance (others: newton_rtol).
+  std::map<std::string, double> field_rtol;
+  double rtol_of(const std::string& field) const;
   double micro_rtol = 0;          ///< each unit: ‖r‖ <= micro_rtol · r_ref
   int max_cutbacks = 0;
   MacroSolverOptions macro_solver;  ///< newton.macro_solver: when the macro factor is refreshed
@@ -127,13 +134,19 @@ struct RunSpec {
   /// output.units: points (FE² units) whose micro fields are written at output steps.
   std::vector<int> output_units;
 
+  bool is_wall_region(int tag) const;
+  bool is_wall(int e) const;
+  /// The wall's elements (is_wall), ascending.
+  std::vector<int> wall_elements() const;
+  /// The wall's elements among `elements` (ascending), in their order.
+  std::vector<int> wall_elements_among(const std::vector<int>& elements) const;
   int model_index_of_tet(int e) const;
   /// Whether some point model has contracting cells (active stress).
   bool contracts() const;
-  /// Model index of every integration point, in point order (element after element,
-  /// points_per_element each; MacroPoints).
+  /// Model index of every integration point, in point order (wall element after wall
+  /// element, points_per_element each; MacroPoints).
   std::vector<int> model_of_points() const;
-  int num_points() const { return points_per_element * mesh.num_tets(); }
+  int num_points() const { return points_per_element * static_cast<int>(wall_elements().size()); }
 };
 
 /// Reads and checks a spec; every problem is an InputError naming the key.

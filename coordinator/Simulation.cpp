@@ -22,12 +22,6 @@ namespace {
 /// one's has stopped contracting (a kept-factor Newton contracts by 0.1–0.5 per iteration).
 constexpr double kStallRatio = 0.9;
 
-std::vector<int> all_elements(const TetMesh& m) {
-  std::vector<int> v(m.num_tets());
-  for (int e = 0; e < m.num_tets(); ++e) v[e] = e;
-  return v;
-}
-
 }  // namespace
 
 const std::vector<double>& StepRecord::residual(const std::string& field) const {
@@ -38,22 +32,24 @@ const std::vector<double>& StepRecord::residual(const std::string& field) const 
 }
 
 Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const MacroExtension& extension)
-    : Simulation(spec, points, proto::Group(), all_elements(spec.mesh), extension) {}
+    : Simulation(spec, points, proto::Group(), MacroPartition::whole(spec.mesh), extension) {}
 
 Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
-                       std::vector<int> owned_elements, const MacroExtension& extension)
+                       MacroPartition partition, const MacroExtension& extension)
     : spec_(spec),
       self_(coordinators.valid() ? MPI_COMM_NULL : MPI_COMM_SELF),
       group_(coordinators.valid() ? coordinators : self_),
-      owned_elements_(std::move(owned_elements)),
+      partition_(std::move(partition)),
       problem_(spec, group_, make_macro_system(spec, extension)),
       displacement_field_(problem_.system().field("displacement")),
-      coupling_(spec, points, group_, owned_elements_, displacement_field_) {
+      coupling_(spec, points, group_, partition_.elements(), displacement_field_) {
+  FE2_CHECK(partition_.part() == group_.rank() && partition_.parts() == group_.size(),
+            "coordinator {} of {} given part {} of {}", group_.rank(), group_.size(), partition_.part(),
+            partition_.parts());
   if (problem_.system().num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
   // The scene's terms (macro/macro_scene.h); an effect that is off builds nothing.
-  for (auto& term : scene_terms(spec, coupling_.points(), owned_elements_, coupling_.responses(), group_.rank(),
-                                group_.size())) {
+  for (auto& term : scene_terms(spec, coupling_.points(), partition_, coupling_.responses())) {
     if (auto* cavities = dynamic_cast<CavityPressureTerm*>(term.get())) cavity_term_ = cavities;
     problem_.add_term(std::move(term));
   }

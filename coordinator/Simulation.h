@@ -83,10 +83,11 @@ class Simulation {
  public:
   /// One process owning every element. `points` is lent.
   Simulation(const RunSpec& spec, PointEvaluator& points, const MacroExtension& extension = {});
-  /// A coordinator of a farm owning `owned_elements` (ascending) and their integration
-  /// points; `coordinators` is lent. @note Collective on the coordinator group (MUMPS).
+  /// A coordinator of a farm owning the elements of `partition` (its part is the group
+  /// rank) and their integration points; `coordinators` is lent.
+  /// @note Collective on the coordinator group (MUMPS).
   Simulation(const RunSpec& spec, PointEvaluator& points, const proto::Group& coordinators,
-             std::vector<int> owned_elements, const MacroExtension& extension = {});
+             MacroPartition partition, const MacroExtension& extension = {});
 
   /// Called after every accepted step (for output); may be empty.
   using StepHook = std::function<void(const StepRecord&)>;
@@ -126,8 +127,10 @@ class Simulation {
   const Eigen::VectorXd& state() const { return problem_.x(); }
   /// The block of the field named `name`.
   Eigen::VectorXd field_values(const std::string& name) const { return problem_.field_values(name); }
-  /// ū alone (3 per mesh node).
-  Eigen::VectorXd displacement() const { return field_values("displacement"); }
+  /// ū at every mesh node, 3a + i (zero at nodes off the wall).
+  Eigen::VectorXd displacement() const {
+    return displacement_field_.at_every_node(state(), spec_.mesh.num_nodes());
+  }
   /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
   /// ends, which is the P1 field there); empty without a pressure field.
   std::vector<double> nodal_pressure() const;
@@ -192,7 +195,7 @@ class Simulation {
   const RunSpec& spec_;
   proto::Group self_;                  ///< MPI_COMM_SELF for the one-process form
   const proto::Group& group_;
-  std::vector<int> owned_elements_;
+  MacroPartition partition_;
   MacroProblem problem_;
   const Field& displacement_field_;
   PointCoupling coupling_;

@@ -296,7 +296,7 @@ int run(const RunOptions& o) {
                    FarmOptions::name_of(spec.farm.policy));
     }
     FarmEvaluator points(transport, coords, layout, spec, store.get(), trace.get());
-    Simulation sim(spec, points, coords, layout.owned_elements(rank));
+    Simulation sim(spec, points, coords, layout.partition(rank));
     RunResult done;
     if (!o.restart.empty()) {
       TraceOffsets ignored;

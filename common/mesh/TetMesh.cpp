@@ -227,4 +227,17 @@ void orient_named_surfaces(TetMesh& m, const std::string& source) {
   }
 }
 
+std::vector<int> face_elements(const TetMesh& m, const std::vector<std::array<int, 3>>& tris) {
+  const auto face_map = build_face_map(m);
+  std::vector<int> tet(tris.size(), -1);
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    const auto it = face_map.find(sorted_key(tris[i]));
+    if (it == face_map.end())
+      throw InputError(fmt::format("triangle {} (nodes {} {} {}) is not a face of any tetrahedron of the mesh", i,
+                                   tris[i][0], tris[i][1], tris[i][2]));
+    tet[i] = it->second.tet[side_of(m, it->second)];
+  }
+  return tet;
+}
+
 }  // namespace fe2

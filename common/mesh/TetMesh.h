@@ -56,6 +56,11 @@ inline constexpr std::array<std::array<int, 2>, 6> kTetEdges = {{{0, 1}, {1, 2},
 /// every edge, numbered after the vertices; face node sets gain their edge nodes.
 void make_quadratic(TetMesh& m);
 
+/// For each triangle of `tris` (a boundary face or an interface of `m`), the tet it
+/// bounds: an interface triangle's tet of the lower region tag (the side its normal
+/// points away from). Throws InputError naming the triangle if it is no face of a tet.
+std::vector<int> face_elements(const TetMesh& m, const std::vector<std::array<int, 3>>& tris);
+
 /// Signed volume of tet e: (x1-x0)·((x2-x0)×(x3-x0))/6.
 double tet_signed_volume(const TetMesh& m, int e);
 

@@ -202,7 +202,15 @@ Schema make_run_spec_schema() {
        {"mesh",
         object(true, "macro mesh",
                {{"kind", choice("box", {"box", "gmsh", "lv"},
-                                "structured box of tetrahedra, a Gmsh 4.1 file, or an idealized left ventricle")}},
+                                "structured box of tetrahedra, a Gmsh 4.1 file, or an idealized left ventricle")},
+                {"wall_regions",
+                 optional(custom("array of region tags or names",
+                                 "the regions of the solid wall: only their elements carry the displacement, "
+                                 "the pressure and the point models (FE² units); the others are left to the "
+                                 "fields that live there (default: every region)",
+                                 {{"type", "array"},
+                                  {"items", {{"type", {"string", "integer"}}}},
+                                  {"minItems", 1}}))}},
                "kind",
                {{"box",
                  {{"lo", numbers(3, std::vector<double>{0, 0, 0}, "lower corner")},
@@ -328,6 +336,11 @@ Schema make_run_spec_schema() {
                {{"max_iterations", integer(20, Range::closed(1, 1000),
                                            "iterations per step before a cutback")},
                 {"rtol", number(1e-8, kOpenUnit, "macro residual / max(‖f_int‖, ‖f_ext‖)")},
+                {"field_rtol",
+                 map(false,
+                     "a tolerance per macro field (displacement, pressure, cavity_pressure), on the "
+                     "norm summary.json logs for it; a field not named here takes rtol",
+                     "field", number(nullopt, kOpenUnit, "the field's residual norm to reach"))},
                 {"micro_rtol", number(1e-8, kOpenUnit, "unit residual ‖r‖ / r_ref")},
                 {"max_cutbacks", integer(4, Range::closed(0, 30), "step halvings before giving up")},
                 {"macro_solver",

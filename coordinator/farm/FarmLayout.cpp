@@ -1,10 +1,12 @@
 #include "coordinator/farm/FarmLayout.h"
 
 #include "coordinator/farm/Rebalancer.h"
+#include "coordinator/macro/macro_scene.h"
 
 #include <metis.h>
 
 #include <algorithm>
+#include <functional>
 
 namespace fe2 {
 
@@ -26,14 +28,7 @@ std::vector<int> FarmLayout::farm_units() const {
   return out;
 }
 
-std::vector<int> FarmLayout::owned_elements(int c) const {
-  std::vector<int> out;
-  for (size_t e = 0; e < coordinator_of_element.size(); ++e)
-    if (coordinator_of_element[e] == c) out.push_back(static_cast<int>(e));
-  return out;
-}
-
-std::vector<int> partition_elements(const TetMesh& mesh, int parts) {
+std::vector<int> partition_elements(const TetMesh& mesh, int parts, const std::vector<int>& weight) {
   const int ne = mesh.num_tets();
   std::vector<int> part(ne, 0);
   if (parts <= 1) return part;
@@ -49,7 +44,11 @@ std::vector<int> partition_elements(const TetMesh& mesh, int parts) {
   options[METIS_OPTION_SEED] = 7;  // the same partition on every rank and every run
   options[METIS_OPTION_NUMBERING] = 0;
   std::vector<idx_t> epart(ne), npart(mesh.num_nodes());
-  const int rc = METIS_PartMeshDual(&n_e, &n_n, eptr.data(), eind.data(), nullptr, nullptr,
+  // Equal weights are no weights: the partition of a one-kind mesh stays METIS's own.
+  std::vector<idx_t> vwgt;
+  if (!weight.empty() && std::adjacent_find(weight.begin(), weight.end(), std::not_equal_to<>()) != weight.end())
+    vwgt.assign(weight.begin(), weight.end());
+  const int rc = METIS_PartMeshDual(&n_e, &n_n, eptr.data(), eind.data(), vwgt.empty() ? nullptr : vwgt.data(), nullptr,
                                     &ncommon, &nparts, nullptr, options, &objval, epart.data(),
                                     npart.data());
   std::vector<int> count(parts, 0);
@@ -82,12 +81,15 @@ FarmLayout FarmLayout::make(const RunSpec& spec, int ranks, int override_count) 
                                  "coordinating, expected at least one worker rank (launch "
                                  "more ranks or let coordinators work)",
                                  ranks));
-  // Elements are partitioned; a point goes with its element (points are numbered
-  // element after element, points_per_element each: MacroPoints).
-  L.coordinator_of_element = partition_elements(spec.mesh, L.coordinators);
-  const int nu = spec.num_points();
-  L.coordinator_of_unit.resize(nu);
-  for (int u = 0; u < nu; ++u) L.coordinator_of_unit[u] = L.coordinator_of_element[u / spec.points_per_element];
+  // Elements are partitioned, balancing each kind's assembly cost; a point goes with its
+  // element (points are numbered wall element after wall element, points_per_element
+  // each: MacroPoints).
+  L.coordinator_of_element =
+      partition_elements(spec.mesh, L.coordinators, scene_fields(spec).element_weights(spec.mesh));
+  for (int e : spec.wall_elements())
+    L.coordinator_of_unit.insert(L.coordinator_of_unit.end(), static_cast<size_t>(spec.points_per_element),
+                                 L.coordinator_of_element[static_cast<size_t>(e)]);
+  const int nu = static_cast<int>(L.coordinator_of_unit.size());
   // Macro-law points cost microseconds, less than the ≈ 2 KB messages of a job: by
   // default they stay with their element's coordinator and only FE² units are placed.
   const std::vector<int> model = spec.model_of_points();

@@ -4,6 +4,7 @@
 // the worker ranks hold the units — every rank, or only the non-coordinators. Computed
 // identically on every rank from the spec and N, so no rank has to be told.
 #include "coordinator/RunSpec.h"
+#include "coordinator/macro/MacroPartition.h"
 
 #include <vector>
 
@@ -28,16 +29,17 @@ struct FarmLayout {
   bool is_worker(int rank) const;
   /// Units (points) owned by coordinator `c`, ascending.
   std::vector<int> owned_units(int c) const;
-  /// Elements owned by coordinator `c`, ascending.
-  std::vector<int> owned_elements(int c) const;
+  /// Coordinator `c`'s share of the macro mesh (every term assembles over it).
+  MacroPartition partition(int c) const { return MacroPartition(c, coordinators, coordinator_of_element); }
 
   /// Throws InputError (before any work) if the coordinator count cannot work.
   /// `coordinators_override` > 0 replaces the spec's farm.coordinators.
   static FarmLayout make(const RunSpec& spec, int ranks, int coordinators_override = 0);
 };
 
-/// Exclusive partition of the tets into `parts` compact parts (METIS on the dual graph;
-/// contiguous blocks when METIS is not needed). Deterministic.
-std::vector<int> partition_elements(const TetMesh& mesh, int parts);
+/// Exclusive partition of the tets into `parts` compact parts of about equal total
+/// `weight` (METIS on the dual graph; empty weights: every element alike; contiguous
+/// blocks when METIS is not needed). Deterministic.
+std::vector<int> partition_elements(const TetMesh& mesh, int parts, const std::vector<int>& weight = {});
 
 }  // namespace fe2

@@ -6,8 +6,8 @@
 
 namespace fe2 {
 
-CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, bool assembles)
-    : spec_(spec), circulation_(*spec.circulation), assembles_(assembles) {
+CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, const MacroPartition& partition)
+    : spec_(spec), circulation_(*spec.circulation), owns_rows_(partition.owns_globals()) {
   committed_.assign(circulation_.state_size(), 0.0);
   circulation_.initial_state(committed_);
   current_ = committed_;
@@ -15,8 +15,9 @@ CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, bool assembles)
   for (int c : spec.coupled_cavities) {
     Cavity cav;
     cav.surface = spec.cavities[c].second;
+    cav.triangles = partition.owned_faces(spec.mesh, spec.mesh.faces.at(cav.surface));
     const CavityVolume v = cavity_volume(spec.mesh, cav.surface, u0);
-    for (const auto& [dof, _] : v.dV_du) cav.volume_dofs.push_back(dof);
+    for (const auto& [dof, _] : v.dV_du) cav.volume_nodal.push_back(dof);
     V_ref_.push_back(v.volume);
     cavities_.push_back(std::move(cav));
   }
@@ -26,15 +27,11 @@ CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, bool assembles)
 void CavityPressureTerm::declare(MacroSystem& system) {
   u_ = &system.field("displacement");
   pc_ = &system.field("cavity_pressure");
-  // cavity_volume() reads ū node-major over the whole mesh (its DOFs 3a + i).
-  FE2_CHECK(u_->offset() == 0 && static_cast<int>(u_->nodes().size()) == spec_.mesh.num_nodes(),
-            "the cavity term needs the displacement field first and on every mesh node");
   for (size_t i = 0; i < cavities_.size(); ++i) cavity_dofs_.push_back(pc_->global_dof(static_cast<int>(i)));
-  if (!assembles_) return;
   for (size_t i = 0; i < cavities_.size(); ++i) {
     Cavity& cav = cavities_[i];
     cav.dof = cavity_dofs_[i];
-    for (const auto& tri : spec_.mesh.faces.at(cav.surface)) {
+    for (const auto& tri : cav.triangles) {
       Face f;
       f.nodes = spec_.mesh.face_nodes(tri);
       f.dofs = u_->node_dofs(f.nodes);
@@ -42,18 +39,19 @@ void CavityPressureTerm::declare(MacroSystem& system) {
       f.local_up = system.declare_local(f.dofs, {cav.dof});
       cav.faces.push_back(std::move(f));
     }
+    if (!owns_rows_) continue;
+    // cavity_volume() numbers ū node-major over the whole mesh (3a + i).
+    for (int d : cav.volume_nodal) cav.volume_dofs.push_back(u_->node_dof(d / 3, d % 3));
     cav.local_pu = system.declare_local({cav.dof}, cav.volume_dofs);
   }
-  local_pp_ = system.declare_local(cavity_dofs_);
+  if (owns_rows_) local_pp_ = system.declare_local(cavity_dofs_);
 }
 
 void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
-  if (!assembles_) return;
   const int n = static_cast<int>(cavities_.size());
   std::vector<double> p(n);
   for (int i = 0; i < n; ++i) p[i] = state.x[cavity_dofs_[i]];
-  flows_ = circulation_.step(state.time, state.dt, p, committed_, current_);
-  const Eigen::VectorXd u = state.x.head(u_->size());
+  if (owns_rows_) flows_ = circulation_.step(state.time, state.dt, p, committed_, current_);
   Eigen::VectorXd f1;
   Eigen::MatrixXd dfdx1;
   std::vector<Vec3> x;
@@ -69,13 +67,15 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
       out.add_tangent(f.local_up, -f1);
       out.add_external(f.dofs, p[i] * f1);
     }
+    if (!owns_rows_) continue;
     // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
-    const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u);
+    const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u_->at_every_node(state.x, spec_.mesh.num_nodes()));
     Eigen::MatrixXd row(1, static_cast<Eigen::Index>(v.dV_du.size()));
     for (size_t k = 0; k < v.dV_du.size(); ++k) row(0, static_cast<Eigen::Index>(k)) = v.dV_du[k].second;
     out.add_tangent(cav.local_pu, row);
     out.add_internal({cav.dof}, Eigen::VectorXd::Constant(1, v.volume - V_n_[i] - state.dt * flows_.Q_net[i]));
   }
+  if (!owns_rows_) return;
   Eigen::MatrixXd Kpp(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) Kpp(i, j) = -state.dt * flows_.dQ(i, j);
@@ -83,13 +83,13 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
 }
 
 void CavityPressureTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
-  if (!assembles_ || field.id() != pc_->id()) return;
+  if (!owns_rows_ || field.id() != pc_->id()) return;
   for (size_t i = 0; i < V_ref_.size(); ++i) scale[static_cast<Eigen::Index>(i)] += V_ref_[i];
 }
 
 void CavityPressureTerm::commit(const MacroState& state) {
   committed_ = current_;
-  const Eigen::VectorXd u = state.x.head(u_->size());
+  const Eigen::VectorXd u = u_->at_every_node(state.x, spec_.mesh.num_nodes());
   for (size_t i = 0; i < cavities_.size(); ++i) V_n_[i] = cavity_volume(spec_.mesh, cavities_[i].surface, u).volume;
 }
 

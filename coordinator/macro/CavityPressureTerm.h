@@ -16,9 +16,11 @@
 //
 // R_c has the units of a volume; its scale is the cavity's unloaded volume.
 //
-// The cavity integrals need the whole surface, so one coordinator (part 0) assembles the
-// term; MUMPS sums the distributed input.
+// The pressure load on a face is assembled by the coordinator owning the face's tet; the
+// volume rows R_c need the whole surface (and the circulation), so the coordinator owning
+// the global unknowns assembles them (MacroPartition). MUMPS sums the distributed input.
 #include "common/circulation/Circulation.h"
+#include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
 #include "coordinator/RunSpec.h"
 
@@ -26,12 +28,11 @@ namespace fe2 {
 
 class CavityPressureTerm final : public MacroTerm {
  public:
-  /// `assembles`: this coordinator assembles the term (exactly one does).
-  CavityPressureTerm(const RunSpec& spec, bool assembles);
+  CavityPressureTerm(const RunSpec& spec, const MacroPartition& partition);
   std::string name() const override { return "cavity pressure"; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
-  /// The cavity pressures' scale: the reference volumes (added where `assembles`).
+  /// The cavity pressures' scale: the reference volumes (added where the rows are).
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void commit(const MacroState& state) override;
   void rollback() override;
@@ -39,7 +40,7 @@ class CavityPressureTerm final : public MacroTerm {
   void save(ByteWriter& w) const override;
   void restore(ByteReader& r) override;
 
-  /// The circulation's answer at the last assembly (valid where `assembles`).
+  /// The circulation's answer at the last assembly (valid where the rows are).
   const CavityFlows& flows() const { return flows_; }
   /// V_c at the end of the last committed step, per circulation cavity.
   const std::vector<double>& committed_volumes() const { return V_n_; }
@@ -54,13 +55,15 @@ class CavityPressureTerm final : public MacroTerm {
   struct Cavity {
     std::string surface;
     int dof = -1;
+    std::vector<std::array<int, 3>> triangles;  ///< the owned part of the surface
     std::vector<Face> faces;
-    std::vector<int> volume_dofs;  ///< the DOFs ∂V/∂ū touches (fixed by the mesh)
+    std::vector<int> volume_nodal;  ///< the nodal DOFs 3a + i ∂V/∂ū touches (fixed by the mesh)
+    std::vector<int> volume_dofs;   ///< the same as DOFs of the displacement field
     int local_pu = -1;
   };
   const RunSpec& spec_;
   const Circulation& circulation_;
-  bool assembles_;
+  bool owns_rows_;  ///< this coordinator assembles R_c (MacroPartition::owns_globals)
   std::vector<Cavity> cavities_;
   int local_pp_ = -1;
   const Field* u_ = nullptr;

@@ -50,9 +50,7 @@ void FieldTable::number(const TetMesh& mesh) {
     if (d.space == FieldSpace::global) {
       f.size_ = d.count;
     } else {
-      auto in_field = [&](int e) {
-        return d.regions.empty() || std::find(d.regions.begin(), d.regions.end(), mesh.region[e]) != d.regions.end();
-      };
+      auto in_field = [&](int e) { return f.lives_on(mesh.region[e]); };
       std::vector<char> carries(mesh.num_nodes(), 0);
       std::vector<int> elements;
       for (int e = 0; e < mesh.num_tets(); ++e) {
@@ -82,6 +80,34 @@ void FieldTable::number(const TetMesh& mesh) {
   }
   num_dofs_ = offset;
   numbered_ = true;
+}
+
+bool Field::lives_on(int tag) const {
+  if (decl_.space == FieldSpace::global) return false;
+  return decl_.regions.empty() || std::find(decl_.regions.begin(), decl_.regions.end(), tag) != decl_.regions.end();
+}
+
+Eigen::VectorXd Field::at_every_node(const Eigen::VectorXd& x, int num_nodes) const {
+  FE2_CHECK(decl_.space == FieldSpace::nodal, "field '{}' is not nodal", name());
+  const int c = components();
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c) * num_nodes);
+  for (int a : nodes_) v.segment(static_cast<Eigen::Index>(c) * a, c) = x.segment(node_dof(a), c);
+  return v;
+}
+
+std::vector<int> FieldTable::element_weights(const TetMesh& mesh) const {
+  const int vertices = 4, nodes = static_cast<int>(mesh.element_nodes(0).size());
+  std::vector<int> w(static_cast<size_t>(mesh.num_tets()), 0);
+  for (int e = 0; e < mesh.num_tets(); ++e) {
+    int dofs = 0;
+    for (const Field& f : fields_) {
+      if (!f.lives_on(mesh.region[static_cast<size_t>(e)])) continue;
+      const FieldSpace s = f.decl().space;
+      dofs += f.components() * (s == FieldSpace::nodal ? nodes : vertices) + (s == FieldSpace::vertex_element);
+    }
+    w[static_cast<size_t>(e)] = std::max(1, dofs * dofs);  // METIS wants positive weights
+  }
+  return w;
 }
 
 const Field* FieldTable::find(const std::string& name) const {

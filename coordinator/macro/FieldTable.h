@@ -15,6 +15,8 @@
 // never compute an offset themselves.
 #include "common/mesh/TetMesh.h"
 
+#include <Eigen/Core>
+
 #include <string>
 #include <vector>
 
@@ -65,6 +67,8 @@ class Field {
   int offset() const { return offset_; }
   int size() const { return size_; }
   bool contains(int dof) const { return dof >= offset_ && dof < offset_ + size_; }
+  /// Whether the field has unknowns on elements of region `tag` (global fields: none).
+  bool lives_on(int tag) const;
 
   /// Mesh nodes carrying unknowns (nodal and vertex spaces), ascending.
   const std::vector<int>& nodes() const { return nodes_; }
@@ -78,6 +82,9 @@ class Field {
   int element_dof(int e) const;
   /// Global fields: DOF of scalar k.
   int global_dof(int k) const;
+  /// A nodal field's values at every one of `num_nodes` mesh nodes, node-major
+  /// (components·a + i), zero at nodes it does not live on; from the full vector `x`.
+  Eigen::VectorXd at_every_node(const Eigen::VectorXd& x, int num_nodes) const;
 
  private:
   friend class FieldTable;
@@ -105,6 +112,9 @@ class FieldTable {
   /// The field a DOF belongs to.
   const Field& field_of(int dof) const;
   int num_dofs() const { return num_dofs_; }
+  /// Per element of `mesh`: the cost of its macro assembly, (Σ over the fields living on
+  /// it of their DOFs on the element)², for a partition balanced by work (METIS weights).
+  std::vector<int> element_weights(const TetMesh& mesh) const;
   std::vector<Field>::const_iterator begin() const { return fields_.begin(); }
   std::vector<Field>::const_iterator end() const { return fields_.end(); }
 

@@ -4,11 +4,10 @@
 
 namespace fe2 {
 
-FollowerPressureTerm::FollowerPressureTerm(const RunSpec& spec, int part, int parts) : spec_(spec) {
-  int k = 0;
+FollowerPressureTerm::FollowerPressureTerm(const RunSpec& spec, const MacroPartition& partition) : spec_(spec) {
   for (size_t p = 0; p < spec.pressure.size(); ++p)
-    for (const auto& tri : spec.mesh.faces.at(spec.pressure[p].surface))
-      if (k++ % parts == part) faces_.push_back({spec.mesh.face_nodes(tri), static_cast<int>(p)});
+    for (const auto& tri : partition.owned_faces(spec.mesh, spec.mesh.faces.at(spec.pressure[p].surface)))
+      faces_.push_back({spec.mesh.face_nodes(tri), static_cast<int>(p)});
 }
 
 void FollowerPressureTerm::declare(MacroSystem& system) {

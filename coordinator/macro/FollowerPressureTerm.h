@@ -4,14 +4,15 @@
 //   f_ext,a = −p ∫ N_a (∂x/∂ξ₁ × ∂x/∂ξ₂) dξ over linear or 6-node triangles
 // (common/fem/follower_pressure.h), with its unsymmetric consistent tangent.
 #include "coordinator/RunSpec.h"
+#include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
 
 namespace fe2 {
 
 class FollowerPressureTerm final : public MacroTerm {
  public:
-  /// Triangles k with k % parts == part of every /pressure load (dealt out in turn).
-  FollowerPressureTerm(const RunSpec& spec, int part, int parts);
+  /// The triangles of every /pressure load that bound the partition's elements.
+  FollowerPressureTerm(const RunSpec& spec, const MacroPartition& partition);
   std::string name() const override { return "follower pressure"; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;

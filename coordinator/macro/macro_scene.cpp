@@ -13,18 +13,20 @@ FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension) {
   u.name = "displacement";
   u.components = 3;
   u.space = FieldSpace::nodal;
+  u.regions = spec.wall_regions;
   // Quasi-static: no rate; the point models difference Z̄ over the step themselves.
   u.time = spec.dynamic ? TimeScheme::newmark : TimeScheme::none;
   u.norm = ResidualNorm::relative_to_load;
-  u.rtol = spec.newton_rtol;
+  u.rtol = spec.rtol_of(u.name);
   t.add(u);
   if (spec.formulation.mixed) {
     FieldDecl p;
     p.name = "pressure";
     p.space = spec.formulation.element_pressure ? FieldSpace::vertex_element : FieldSpace::vertex;
+    p.regions = spec.wall_regions;
     // R_p relative to ∫N_p: the volumetric strain J̄ − 1 (+ p/κ) not yet removed.
     p.norm = ResidualNorm::scaled_l2;
-    p.rtol = spec.newton_rtol;
+    p.rtol = spec.rtol_of(p.name);
     t.add(p);
   }
   if (spec.circulation) {
@@ -34,7 +36,7 @@ FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension) {
     pc.count = static_cast<int>(spec.coupled_cavities.size());
     // R_c relative to the cavity's unloaded volume, the worst cavity.
     pc.norm = ResidualNorm::scaled_max;
-    pc.rtol = spec.newton_rtol;
+    pc.rtol = spec.rtol_of(pc.name);
     t.add(pc);
   }
   for (const FieldDecl& f : extension.fields) t.add(f);
@@ -52,7 +54,9 @@ MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& extensi
       if (!ds.fixed[i]) continue;
       const int source = constraints.add_value(
           [&spec, d, i](double t) { return spec.dirichlet[d].value[i] * ramp_factor(spec.dirichlet[d].ramp, t, spec.t_end); });
-      for (int node : spec.mesh.node_sets.at(ds.set)) constraints.prescribe(u.node_dof(node, i), source);
+      // A set may reach past the wall (a base plane through wall and cavity): its wall nodes.
+      for (int node : spec.mesh.node_sets.at(ds.set))
+        if (u.has_node(node)) constraints.prescribe(u.node_dof(node, i), source);
     }
   }
   if (extension.constrain) extension.constrain(fields, constraints);
@@ -60,16 +64,16 @@ MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& extensi
 }
 
 std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const MacroPoints& points,
-                                                    const std::vector<int>& owned_elements,
-                                                    const std::vector<PointResponse>& responses, int part,
-                                                    int parts) {
+                                                    const MacroPartition& partition,
+                                                    const std::vector<PointResponse>& responses) {
+  const std::vector<int> wall = spec.wall_elements_among(partition.elements());
   std::vector<std::unique_ptr<MacroTerm>> terms;
-  terms.push_back(std::make_unique<PointStressTerm>(spec.mesh, points, owned_elements, responses));
-  if (spec.dynamic) terms.push_back(std::make_unique<InertiaTerm>(spec.mesh, owned_elements, spec.density));
-  if (!spec.pressure.empty()) terms.push_back(std::make_unique<FollowerPressureTerm>(spec, part, parts));
-  if (spec.circulation) terms.push_back(std::make_unique<CavityPressureTerm>(spec, part == 0));
+  terms.push_back(std::make_unique<PointStressTerm>(spec.mesh, points, wall, responses));
+  if (spec.dynamic) terms.push_back(std::make_unique<InertiaTerm>(spec.mesh, wall, spec.density));
+  if (!spec.pressure.empty()) terms.push_back(std::make_unique<FollowerPressureTerm>(spec, partition));
+  if (spec.circulation) terms.push_back(std::make_unique<CavityPressureTerm>(spec, partition));
   if (spec.formulation.mixed)
-    terms.push_back(std::make_unique<IncompressibilityTerm>(spec.mesh, points, owned_elements, spec.formulation));
+    terms.push_back(std::make_unique<IncompressibilityTerm>(spec.mesh, points, wall, spec.formulation));
   return terms;
 }
 

@@ -4,12 +4,15 @@
 // no field and builds no term. The driver (Simulation) names no field: it numbers,
 // integrates in time, assembles and measures whatever this file declares.
 //
+// The displacement and the pressure live on the wall (RunSpec::wall_regions).
+//
 //   field            when                       term(s)
 //   displacement     always                     PointStressTerm; InertiaTerm (newmark);
 //                                               FollowerPressureTerm (/pressure)
 //   pressure         formulation.kind = mixed   IncompressibilityTerm
 //   cavity_pressure  a circulation is coupled   CavityPressureTerm
 #include "coordinator/RunSpec.h"
+#include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroSystem.h"
 #include "coordinator/macro/MacroTerm.h"
 #include "coordinator/macro/PointStressTerm.h"
@@ -36,11 +39,12 @@ FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension = {
 /// extension's constraints.
 MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& extension = {});
 
-/// The scene's terms over `owned_elements` (ascending) of coordinator `part` of `parts`;
-/// `responses` (the owned points' answers) is lent to the point-stress term.
+/// The scene's terms over this coordinator's `partition` of the mesh (the wall terms
+/// over its wall elements, the surface loads over its elements' faces, the cavity rows
+/// where it owns the global unknowns); `responses` (the owned points' answers) is lent
+/// to the point-stress term.
 std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const MacroPoints& points,
-                                                    const std::vector<int>& owned_elements,
-                                                    const std::vector<PointResponse>& responses, int part,
-                                                    int parts);
+                                                    const MacroPartition& partition,
+                                                    const std::vector<PointResponse>& responses);
 
 }  // namespace fe2

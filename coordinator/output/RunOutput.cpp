@@ -47,22 +47,6 @@ std::vector<std::string> run_output_files(const std::string& dir) {
   return names;
 }
 
-void check_output_folder(const std::string& dir, bool overwrite) {
-  std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw InputError(fmt::format("--out '{}' exists and is not a folder; expected a folder for the "
-                                 "run's output (new, empty, or an earlier run with --overwrite)",
-                                 dir));
-  const std::vector<std::string> earlier = run_output_files(dir);
-  if (earlier.empty() || overwrite) return;
-  const std::size_t shown = std::min<std::size_t>(earlier.size(), 4);
-  throw InputError(fmt::format(
-      "--out '{}' already holds an fe2heart run ({} file{}: {}{}); use --overwrite to replace "
-      "it, or another --out",
-      dir, earlier.size(), earlier.size() == 1 ? "" : "s", fmt::join(earlier.begin(), earlier.begin() + shown, ", "),
-      earlier.size() > shown ? ", ..." : ""));
-}
-
 RunOutput::RunOutput(const std::string& dir, const RunSpec& spec, bool resume) : dir_(dir) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
@@ -137,11 +121,15 @@ void RunOutput::write_fields(const Simulation& sim, const PointFields& fields, i
       Ta[e] += w * fields.active_tension[k];
       fibre[e] += w * sim.frame(k).col(0);
     }
+    region[e] = mesh.region[e];
+    if (volume == 0.0) {  // off the wall: no points, no model (written as −1)
+      model[e] = -1;
+      continue;
+    }
     detF[e] /= volume;
     P_cell[e] /= volume;
     Ta[e] /= volume;
     fibre[e].normalize();
-    region[e] = mesh.region[e];
     model[e] = sim.spec().model_index_of_tet(e);
   }
   cell.add_tensor("P_bar", P_cell);

@@ -27,19 +27,10 @@ bool is_run_output_file(const std::string& name);
 /// `dir`; empty if `dir` does not exist).
 std::vector<std::string> run_output_files(const std::string& dir);
 
-/// Refuses an output folder that holds an earlier run: "different run" means any
-/// file of is_run_output_file() in it, since a rerun would mix its files with stale
-/// ones (e.g. VTUs of steps it never reaches). Without `overwrite` that is an
-/// InputError naming the folder and the remedy (--overwrite or another --out); a
-/// missing folder, an empty one, or one holding only other files is fine. Writes
-/// and removes nothing: RunOutput removes the earlier run's files once every rank
-/// has agreed to start. Also an InputError if `dir` exists but is not a folder.
-void check_output_folder(const std::string& dir, bool overwrite);
-
 class RunOutput {
  public:
   /// Creates `dir` (InputError if it cannot), removes the files of an earlier run
-  /// from it (check_output_folder() has allowed that; other files are left alone),
+  /// from it (tools/output_folder.h has allowed that; other files are left alone),
   /// copies the spec into it and writes an incomplete summary.json.
   /// With `resume` (a restart into the folder of the run it continues) nothing of the
   /// earlier run is removed, and resume() takes up its series and summary.

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 namespace fe2 {
 namespace {
@@ -262,6 +263,128 @@ TEST(TestOnlyField, FollowingTheWallOnTheInterfaceItSolvesWithTheWallInOneNewton
     Simulation alone(spec, alone_points);
     ASSERT_TRUE(alone.run().converged);
     EXPECT_LT((alone.displacement() - u).norm(), 1e-12 * u.norm());
+  }
+}
+
+// The seam with the wall on its own region: the wall is region 2 (x > 1/2) alone (its
+// points and ū live there), pulled on ymax and held on xmax; a steady diffusion field on
+// region 1 follows the wall's u_y on the interface x = 1/2 and is 0 on x = 0. One Newton
+// loop solves both; T must equal an independent solve of the same Laplace problem with
+// the wall's interface values as Dirichlet data (P1 stiffness in closed form, Eigen LDLᵀ).
+TEST(TestOnlyField, OnARegionOfItsOwnNextToTheWallItMatchesAnIndependentSolve) {
+  json j = box_scene(1);
+  j["mesh"]["region_slabs"] = {{"axis", "x"}, {"count", 2}};
+  j["mesh"]["wall_regions"] = json::array({2});
+  j["dirichlet"] = {{{"set", "xmax"}}, {{"set", "ymax"}, {"value", {0.0, 0.02, 0.005}}}};
+  const RunSpec spec = read_run_spec(j, "");
+  const TetMesh& m = spec.mesh;
+  const std::vector<int> interface = interface_nodes(m, {1}, {2});
+  ASSERT_FALSE(interface.empty());
+  MacroExtension ext;
+  ext.fields.push_back({"temperature", 1, FieldSpace::nodal, {1}, 0, TimeScheme::none,
+                        ResidualNorm::relative_to_load, 1e-10});
+  ext.constrain = [&](const FieldTable& fields, MacroConstraints& c) {
+    const Field& T = fields.at("temperature");
+    const Field& u = fields.at("displacement");
+    for (int a : interface) c.follow(T.node_dof(a), u.node_dof(a, 1));
+    const int zero = c.add_value([](double) { return 0.0; });
+    for (int a : m.node_sets.at("xmin")) c.prescribe(T.node_dof(a), zero);
+  };
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points, ext);
+  sim.add_term(std::make_unique<ScalarDiffusionTerm>(m, "temperature", 0.0, 1.0, 0.0));
+  const RunResult r = sim.run();
+  ASSERT_TRUE(r.converged) << r.error;
+  const Field& T = sim.system().field("temperature");
+  const Field& u = sim.system().field("displacement");
+  EXPECT_FALSE(u.has_node(m.node_sets.at("xmin")[0]));  // no wall there
+  const Eigen::VectorXd x = sim.state();
+  double interface_u = 0.0;
+  for (int a : interface) interface_u = std::max(interface_u, std::abs(x[u.node_dof(a, 1)]));
+  ASSERT_GT(interface_u, 1e-3);  // the wall moves the interface: the coupling has work to do
+
+  // Independent: K_ab = Σ_e V_e ∇λ_a·∇λ_b over region 1, Dirichlet at x = 0 and on the interface.
+  const int n = m.num_nodes();
+  std::vector<double> fixed(n, std::nan(""));
+  for (int a : m.node_sets.at("xmin")) fixed[a] = 0.0;
+  for (int a : interface) fixed[a] = x[u.node_dof(a, 1)];
+  std::vector<int> eq(n, -1);
+  int free = 0;
+  for (int a : T.nodes())
+    if (std::isnan(fixed[a])) eq[a] = free++;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(free, free);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(free);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    if (m.region[e] != 1) continue;
+    Eigen::Matrix4d A;
+    for (int a = 0; a < 4; ++a) A.row(a) << 1.0, m.nodes[m.tets[e][a]].transpose();
+    const Eigen::Matrix4d C = A.inverse();  // column a: λ_a = C(0,a) + C(1..3,a)·X
+    const double V = std::abs(A.determinant()) / 6.0;
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        const int na = m.tets[e][a], nb = m.tets[e][b];
+        if (eq[na] < 0) continue;
+        const double k = V * C.col(a).tail<3>().dot(C.col(b).tail<3>());
+        if (eq[nb] >= 0) K(eq[na], eq[nb]) += k;
+        else f[eq[na]] -= k * fixed[nb];
+      }
+  }
+  const Eigen::VectorXd Tfree = K.ldlt().solve(f);
+  double worst = 0.0, scale = 0.0;
+  for (int a : T.nodes()) {
+    const double expected = eq[a] >= 0 ? Tfree[eq[a]] : fixed[a];
+    worst = std::max(worst, std::abs(x[T.node_dof(a)] - expected));
+    scale = std::max(scale, std::abs(expected));
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
+  for (int a : interface) EXPECT_EQ(x[T.node_dof(a)], x[u.node_dof(a, 1)]) << "interface node " << a;
+}
+
+// newton.field_rtol: each field converges against its own tolerance. A step stops at
+// the first iteration (after the one that applies the prescribed increment) where every
+// field meets its own, and not before.
+TEST(FieldTolerances, EachFieldConvergesAgainstItsOwnAndAStepStopsWhenAllDo) {
+  auto run = [](const json& field_rtol) {
+    json j = box_scene(1, 3);
+    j["dirichlet"][3]["value"] = {0.2, 0, 0};  // 20 %: Newton needs a few iterations
+    j["formulation"] = {{"kind", "mixed"}, {"stabilization_modulus", 1e3}};
+    if (!field_rtol.is_null()) j["newton"]["field_rtol"] = field_rtol;
+    const RunSpec spec = read_run_spec(j, "");
+    LocalEvaluator points(spec.models, spec.model_of_points());
+    Simulation sim(spec, points);
+    std::map<std::string, double> rtol;
+    for (const Field& f : sim.system().fields()) rtol[f.name()] = f.decl().rtol;
+    const RunResult r = sim.run();
+    EXPECT_TRUE(r.converged) << r.error;
+    int total = 0;
+    for (const StepRecord& h : r.history) {
+      total += h.iterations;
+      const size_t n = h.residual("displacement").size();
+      // Iteration 0 applies the step's prescribed increment and always corrects.
+      for (size_t k = 1; k < n; ++k) {
+        bool all_met = true;
+        for (const auto& [name, tol] : rtol) all_met = all_met && h.residual(name).at(k) <= tol;
+        EXPECT_EQ(all_met, k + 1 == n) << "step " << h.step << " iteration " << k;
+      }
+    }
+    return std::make_pair(rtol, total);
+  };
+  const auto [tight, tight_iterations] = run(nullptr);
+  EXPECT_EQ(tight.at("displacement"), 1e-11);
+  EXPECT_EQ(tight.at("pressure"), 1e-11);
+  const auto [loose, loose_iterations] = run({{"displacement", 1e-3}, {"pressure", 1e-3}});
+  EXPECT_EQ(loose.at("displacement"), 1e-3);
+  EXPECT_EQ(loose.at("pressure"), 1e-3);
+  EXPECT_LT(loose_iterations, tight_iterations);
+
+  json j = box_scene(1);
+  j["newton"]["field_rtol"] = {{"presure", 1e-3}};
+  try {
+    read_run_spec(j, "");
+    ADD_FAILURE() << "a tolerance for a field the scene lacks was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/newton/field_rtol/presure"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("displacement"), std::string::npos) << e.what();
   }
 }
 

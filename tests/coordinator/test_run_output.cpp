@@ -3,6 +3,7 @@
 #include "coordinator/output/RunOutput.h"
 
 #include "common/error.h"
+#include "tools/output_folder.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -39,7 +40,7 @@ class Scratch {
 
 std::string refusal(const std::string& dir, bool overwrite) {
   try {
-    check_output_folder(dir, overwrite);
+    cli::refuse_earlier_output(dir, "an fe2heart run", run_output_files(dir), overwrite);
   } catch (const InputError& e) {
     return e.what();
   }
