@@ -138,7 +138,8 @@ void read_frame(SpecNode f, RunSpec& spec) {
   const bool gmsh = spec.raw.contains("mesh") && spec.raw["mesh"].is_object() &&
                     spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
   FrameSpec& fr = spec.frame;
-  fr.field = read_frame_field_spec(f, spec.mesh, spec.base_dir, gmsh ? spec.mesh_source : "");
+  fr.field = read_frame_field_spec(f, spec.mesh, spec.base_dir, gmsh ? spec.mesh_source : "",
+                                   spec.formulation.quadrature_degree);
   const AnalyticFrame& a = fr.field.analytic;
   fr.fibre = a.fibre;
   fr.sheet = a.sheet;
@@ -349,6 +350,8 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   spec.title = root.string("title");
   root.string("description");
   read_mesh(root.child("mesh"), spec);
+  // Before the frame: a fibre file per point numbers its points by the quadrature rule.
+  read_formulation(root.child("formulation"), spec);
   read_frame(root.child("frame"), spec);
   if (root.has("activation")) {
     // An eikonal front follows the fibres: the frame field is built now (and kept, so
@@ -359,7 +362,6 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
     spec.activation = read_activation(activation, spec.mesh, spec.frame.built.get(), spec.base_dir,
                                       gmsh ? spec.mesh_source : "");
   }
-  read_formulation(root.child("formulation"), spec);
   read_newton(root.child("newton"), spec);
   read_models(root.child("models"), root.child("assign"), spec);
 
