@@ -426,7 +426,7 @@ TEST(FileFrame, GmshElementViewsRoundTripBitForBit) {
   EXPECT_EQ(separate.sheets(), w.s);
 }
 
-TEST(FileFrame, GmshNodeViewsInterpolateAndReorthonormalize) {
+TEST(FileFrame, GmshNodeViewsInterpolateAsRotations) {
   ScratchDir dir;
   const std::string mesh_file = dir / "two_tets.msh";
   const Written w = random_frames(5, 2, /*smooth=*/true);
