@@ -48,7 +48,4 @@ class MacroPoints {
   int degree_ = 0;
 };
 
-/// Default quadrature degree for a mesh order: 2(order − 1) (exact stiffness on affine elements).
-inline int default_point_degree(int order) { return 2 * (order - 1); }
-
 }  // namespace fe2

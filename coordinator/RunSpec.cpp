@@ -231,7 +231,8 @@ void read_frame(SpecNode f, RunSpec& spec) {
   const bool gmsh = spec.raw.contains("mesh") && spec.raw["mesh"].is_object() &&
                     spec.raw["mesh"].value("kind", std::string("box")) == "gmsh";
   FrameSpec& fr = spec.frame;
-  fr.field = read_frame_field_spec(f, spec.mesh, spec.base_dir, gmsh ? spec.mesh_source : "");
+  fr.field = read_frame_field_spec(f, spec.mesh, spec.base_dir, gmsh ? spec.mesh_source : "",
+                                   spec.formulation.quadrature_degree);
   const AnalyticFrame& a = fr.field.analytic;
   fr.fibre = a.fibre;
   fr.sheet = a.sheet;
@@ -573,9 +574,10 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   spec.title = root.string("title");
   root.string("description");
   read_mesh(root.child("mesh"), spec);
+  // Before the frame: a fibre file per point numbers its points by the quadrature rule.
+  read_formulation(root.child("formulation"), spec);
   read_frame(root.child("frame"), spec);
   read_activation_of(root, spec);
-  read_formulation(root.child("formulation"), spec);
   read_newton(root.child("newton"), spec);
   read_models(root.child("models"), root.child("assign"), spec);
 

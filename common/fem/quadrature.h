@@ -29,4 +29,8 @@ struct TriangleQuadraturePoint {
 std::vector<TetQuadraturePoint> tet_rule(int degree);
 std::vector<TriangleQuadraturePoint> triangle_rule(int degree);
 
+/// The macro points' default degree for a mesh order: 2(order − 1) (exact stiffness on
+/// affine elements); coordinator/MacroPoints and per-point fibre files number points by it.
+inline int default_point_degree(int order) { return 2 * (order - 1); }
+
 }  // namespace fe2

@@ -2,9 +2,8 @@
 
 #include "common/error.h"
 #include "common/spec/SpecNode.h"
+#include "common/fibres/frame_interpolation.h"
 #include "common/fibres/laplace_p1.h"
-
-#include <Eigen/Geometry>
 
 #include <cmath>
 
@@ -34,26 +33,6 @@ Vec3 centroid(const TetMesh& mesh, const std::vector<int>& nodes) {
 }
 
 }  // namespace
-
-Mat3 bislerp(const Mat3* Qa, const Mat3* Qb, double t) {
-  if (!Qa) return *Qb;
-  if (!Qb) return *Qa;
-  const Eigen::Quaterniond qa(*Qa), qb(*Qb);
-  Eigen::Quaterniond best = qa;
-  double best_dot = -1;
-  // qa·i, qa·j, qa·k turn the frame by π about its own axes: the same fibre, sheet and
-  // normal lines. ±q is handled by Eigen's slerp, which takes the shorter arc.
-  for (const Eigen::Quaterniond& turn : {Eigen::Quaterniond(1, 0, 0, 0), Eigen::Quaterniond(0, 1, 0, 0),
-                                         Eigen::Quaterniond(0, 0, 1, 0), Eigen::Quaterniond(0, 0, 0, 1)}) {
-    const Eigen::Quaterniond q = qa * turn;
-    const double d = std::abs(q.dot(qb));
-    if (d > best_dot) {
-      best_dot = d;
-      best = q;
-    }
-  }
-  return best.slerp(t, qb).toRotationMatrix();
-}
 
 RuleFrame::RuleFrame(const TetMesh& mesh, RuleFrameOptions opt) : opt_(std::move(opt)), tets_(mesh.tets) {
   const auto& base = named_set(mesh, "base", opt_.base);

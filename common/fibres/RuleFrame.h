@@ -22,7 +22,8 @@
 //         Q_endo = bislerp(Q_lv, Q_rv, d); Q_epi = orient(axis(∇ψ, ∇φ_epi), α(φ_epi),
 //         β(φ_epi)); Q = bislerp(Q_endo, Q_epi, φ_epi). bislerp: quaternion slerp from the
 //         symmetry-equivalent of Q_a (±, or turned by π about one of its own axes, which
-//         leaves the fibre, sheet and normal lines unchanged) closest to Q_b.
+//         leaves the fibre, sheet and normal lines unchanged) closest to Q_b
+//         (frame_interpolation.h, shared with the nodal fibre files).
 // Evaluated inside elements only, so never at the apex point where ∇ψ is singular.
 // Gradients are the element's (constant); where one vanishes (all four vertices on one
 // surface), the recovered nodal gradients interpolated to the point. Where ∇ψ vanishes
@@ -30,6 +31,7 @@
 // centroid of `apex` to that of `base`) made orthogonal to t, and failing that to
 // any direction orthogonal to t. A vanishing ∇φ is an InputError naming the element.
 #include "common/fibres/FrameField.h"
+#include "common/fibres/frame_interpolation.h"  // bislerp
 #include "common/mesh/TetMesh.h"
 
 #include <string>
@@ -43,11 +45,6 @@ struct RuleFrameOptions {
   std::string apex;     ///< named node set; "": the `epi` node farthest from the base centroid
   std::string rv_endo;  ///< non-empty: biventricular, with `endo` the LV endocardium
 };
-
-/// Bayer's bislerp: the rotation a fraction t of the way from Qa to Qb, along the
-/// quaternion arc from the symmetry-equivalent of Qa (turned by π about one of its own
-/// axes, or not) closest to Qb. A null Qa or Qb (a field absent at the point) gives the other.
-Mat3 bislerp(const Mat3* Qa, const Mat3* Qb, double t);
 
 class RuleFrame : public FrameField {
  public:

@@ -57,7 +57,7 @@ void read_rule(SpecNode& f, const TetMesh& mesh, RuleFrameOptions& r) {
 }  // namespace
 
 FrameFieldSpec read_frame_field_spec(SpecNode& f, const TetMesh& mesh, const std::string& base_dir,
-                                     const std::string& gmsh_mesh_file) {
+                                     const std::string& gmsh_mesh_file, int quadrature_degree) {
   FrameFieldSpec spec;
   const std::string kind = f.choice("kind");
   if (kind == "constant" || kind == "rotating") {
@@ -70,7 +70,12 @@ FrameFieldSpec read_frame_field_spec(SpecNode& f, const TetMesh& mesh, const std
     if (p.is_relative()) p = std::filesystem::path(base_dir) / p;
     o.file = p.string();
     o.csv = f.choice("format") == "csv";
-    o.per_node = f.choice("per") == "node";
+    const std::string per = f.choice("per");
+    o.per = per == "node" ? FramePer::node : per == "point" ? FramePer::point : FramePer::element;
+    if (o.per == FramePer::point && !o.csv)
+      f.fail("format", "\"csv\" for frames per point (lines tag,point,fx,fy,fz,sx,sy,sz; Gmsh views hold one "
+                       "vector per element or node)");
+    o.quadrature_degree = quadrature_degree;
     o.fibre_view = f.string("fibre_view");
     o.sheet_view = f.string("sheet_view");
     o.mesh_file = gmsh_mesh_file;

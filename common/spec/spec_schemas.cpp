@@ -246,9 +246,12 @@ Schema make_run_spec_schema() {
                 {"file",
                  {{"file", string(nullopt, "fibre file: Gmsh MSH 4.1 views or CSV")},
                   {"format", choice("gmsh", {"gmsh", "csv"},
-                                    "gmsh: $ElementData/$NodeData views; csv: lines tag,fx,fy,fz,sx,sy,sz")},
-                  {"per", choice("element", {"element", "node"},
-                                 "one fibre and sheet per element, or per node (interpolated)")},
+                                    "gmsh: $ElementData/$NodeData views; csv: lines tag,fx,fy,fz,sx,sy,sz "
+                                    "(per point: tag,point,fx,fy,fz,sx,sy,sz)")},
+                  {"per", choice("element", {"element", "node", "point"},
+                                 "one fibre and sheet per element; per node (interpolated as rotations); or per "
+                                 "integration point (csv only), keyed by element tag and the point's 0-based index "
+                                 "in the tet rule of formulation.quadrature_degree")},
                   {"fibre_view", string("fibre", "name of the Gmsh view of fibre vectors")},
                   {"sheet_view", string("sheet", "name of the Gmsh view of sheet vectors")}}},
                 {"rule",

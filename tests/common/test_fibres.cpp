@@ -1,11 +1,14 @@
 // Fibre fields (common/fibres/): the rule-based (Bayer 2012) frame on a slab whose
 // endo/epi/base/apex are box faces (exact answers: φ and ψ are linear there), Bayer's
-// bislerp, file-given frames (Gmsh views, CSV) round-tripping bit for bit, bad fibre
-// files with their messages, the spec keys and the VTU cell vectors.
+// bislerp, file-given frames (Gmsh views, CSV) round-tripping bit for bit, nodal frames
+// interpolated as rotations (a helix through a thin wall), frames per integration point,
+// bad fibre files with their messages, the spec keys and the VTU cell vectors.
 #include "common/error.h"
+#include "common/fem/quadrature.h"
 #include "common/fibres/AnalyticFrame.h"
 #include "common/fibres/FileFrame.h"
 #include "common/fibres/RuleFrame.h"
+#include "common/fibres/frame_interpolation.h"
 #include "common/fibres/frame_output.h"
 #include "common/fibres/frame_spec.h"
 #include "common/io/vtu_writer.h"
@@ -423,7 +426,7 @@ TEST(FileFrame, GmshElementViewsRoundTripBitForBit) {
   EXPECT_EQ(separate.sheets(), w.s);
 }
 
-TEST(FileFrame, GmshNodeViewsInterpolateAndReorthonormalize) {
+TEST(FileFrame, GmshNodeViewsInterpolateAsRotations) {
   ScratchDir dir;
   const std::string mesh_file = dir / "two_tets.msh";
   const Written w = random_frames(5, 2, /*smooth=*/true);
@@ -433,7 +436,7 @@ TEST(FileFrame, GmshNodeViewsInterpolateAndReorthonormalize) {
   FileFrameOptions o;
   o.file = mesh_file;
   o.mesh_file = mesh_file;
-  o.per_node = true;
+  o.per = FramePer::node;
   const FileFrame ff(m, o);
   const GmshTags tags = read_gmsh_tags(mesh_file);
   for (int i = 0; i < m.num_nodes(); ++i) {
@@ -449,19 +452,22 @@ TEST(FileFrame, GmshNodeViewsInterpolateAndReorthonormalize) {
       EXPECT_NEAR((Q.col(0) - ff.fibres()[m.tets[e][a]]).norm(), 0.0, 1e-15);
       EXPECT_NEAR((Q.col(1) - ff.sheets()[m.tets[e][a]]).norm(), 0.0, 1e-15);
     }
-    // Inside: f = normalize(Σ λ f_a), s = Gram–Schmidt of Σ λ s_a against f.
-    const Bary l{0.1, 0.2, 0.3, 0.4};
-    Vec3 f = Vec3::Zero(), s = Vec3::Zero();
-    for (int a = 0; a < 4; ++a) {
-      f += l[a] * ff.fibres()[m.tets[e][a]];
-      s += l[a] * ff.sheets()[m.tets[e][a]];
+    // On an edge: Bayer's bislerp of the two nodal frames (frame_mean of two frames is
+    // the slerp point), up to a frame symmetry (f, s, n lines compared).
+    for (double t : {0.25, 0.5, 0.8}) {
+      Bary l{};
+      l[1] = 1 - t;
+      l[3] = t;
+      Mat3 Q1, Q3;
+      ASSERT_TRUE(orthonormal_frame(ff.fibres()[m.tets[e][1]], ff.sheets()[m.tets[e][1]], Q1));
+      ASSERT_TRUE(orthonormal_frame(ff.fibres()[m.tets[e][3]], ff.sheets()[m.tets[e][3]], Q3));
+      const Mat3 B = bislerp(&Q1, &Q3, t), Q = ff.at(e, l, Vec3());
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(std::abs(Q.col(c).dot(B.col(c))), 1.0, 1e-12) << e << " t " << t;
     }
-    f.normalize();
-    s = (s - s.dot(f) * f).normalized();
-    const Mat3 Q = ff.at(e, l, Vec3());
-    EXPECT_NEAR((Q.col(0) - f).norm(), 0.0, 1e-14);
-    EXPECT_NEAR((Q.col(1) - s).norm(), 0.0, 1e-14);
-    EXPECT_NEAR((Q.col(2) - f.cross(s)).norm(), 0.0, 1e-14);
+    // Inside: a proper rotation.
+    const Mat3 Q = ff.at(e, Bary{0.1, 0.2, 0.3, 0.4}, Vec3());
+    EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(Q.determinant(), 1.0, 1e-12);
   }
 }
 
@@ -571,6 +577,335 @@ TEST(FileFrame, BadGmshViewsNameFileViewAndTag) {
 }
 
 // -------------------------------------------------------------------------------------
+// Nodal frames as rotations: a helix turning 150° through a wall two elements thick.
+
+/// The angle (degrees) between the lines of a and b (a and −a are one fibre).
+double line_deg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), std::abs(a.dot(b))) / kDeg; }
+
+/// The largest angle between the fibre, sheet and normal lines of two frames.
+double frame_deg(const Mat3& P, const Mat3& Q) {
+  return std::max({line_deg(P.col(0), Q.col(0)), line_deg(P.col(1), Q.col(1)), line_deg(P.col(2), Q.col(2))});
+}
+
+void expect_rotation(const Mat3& Q, const std::string& where) {
+  EXPECT_NEAR((Q.transpose() * Q - Mat3::Identity()).norm(), 0.0, 1e-12) << where;
+  EXPECT_NEAR(Q.determinant(), 1.0, 1e-12) << where;
+}
+
+/// The slab wall x ∈ [0, 1] (transmural x, 2 elements thick), the fibre in the plane of
+/// the wall at the helix angle α(x) = 75° − 150° x from e_y towards e_z, the sheet e_x:
+/// the frame RuleFrame gives with α_endo = 75, α_epi = −75 on this slab.
+Mat3 helix_frame(double x) {
+  const double a = (75.0 - 150.0 * x) * kDeg;
+  Mat3 Q;
+  Q.col(0) = Vec3(0, std::cos(a), std::sin(a));
+  Q.col(1) = Vec3::UnitX();
+  Q.col(2) = Q.col(0).cross(Q.col(1));
+  return Q;
+}
+
+TetMesh helix_slab(int order, int through = 2) {
+  return make_box_mesh(Vec3(0, 0, 0), Vec3(1, 2, 2), {through, 2, 2}, -1, 1, order);
+}
+
+/// The helix frames written per node (tag = index + 1) and read back.
+FileFrame helix_per_node(const ScratchDir& dir, const TetMesh& m) {
+  std::string csv = "tag,fx,fy,fz,sx,sy,sz\n";
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    const Mat3 Q = helix_frame(m.nodes[i][0]);
+    csv += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", i + 1, Q(0, 0), Q(1, 0), Q(2, 0), Q(0, 1),
+                       Q(1, 1), Q(2, 1));
+  }
+  const std::string file = dir / fmt::format("helix_nodes_p{}_{}.csv", m.order(), m.num_nodes());
+  write_text(file, csv);
+  FileFrameOptions o;
+  o.file = file;
+  o.csv = true;
+  o.per = FramePer::node;
+  return FileFrame(m, o);
+}
+
+/// The nodal rule FileFrame had before frames were interpolated as rotations, kept to
+/// measure what it got wrong: f = Σ N_a (±f_a), s = Σ N_a (±s_a) with the signs of the
+/// element's first node, then Gram–Schmidt.
+Mat3 linear_nodal(const FileFrame& ff, const TetMesh& m, int e, const Bary& l) {
+  const std::vector<int> n = m.element_nodes(e);
+  double N[10];
+  const bool p2 = n.size() == 10;
+  for (int i = 0; i < 4; ++i) N[i] = p2 ? l[i] * (2 * l[i] - 1) : l[i];
+  if (p2)
+    for (int k = 0; k < 6; ++k) N[4 + k] = 4 * l[kTetEdges[k][0]] * l[kTetEdges[k][1]];
+  Vec3 f = Vec3::Zero(), s = Vec3::Zero();
+  const Vec3 &f0 = ff.fibres()[n[0]], &s0 = ff.sheets()[n[0]];
+  for (std::size_t a = 0; a < n.size(); ++a) {
+    const Vec3 &fa = ff.fibres()[n[a]], &sa = ff.sheets()[n[a]];
+    f += N[a] * (fa.dot(f0) < 0 ? Vec3(-fa) : fa);
+    s += N[a] * (sa.dot(s0) < 0 ? Vec3(-sa) : sa);
+  }
+  Mat3 Q = Mat3::Identity();
+  EXPECT_TRUE(orthonormal_frame(f, s, Q));
+  return Q;
+}
+
+/// The points a per-node field is checked at: the centroid and the 4-point rule's.
+std::vector<Bary> check_points() {
+  std::vector<Bary> out = {kCentroid};
+  for (const auto& q : tet_rule(2)) out.push_back({q.bary[0], q.bary[1], q.bary[2], q.bary[3]});
+  return out;
+}
+
+TEST(FileFrame, NodalHelixTurning150DegreesThroughTwoElementsIsFollowed) {
+  // Measured (the largest angle between the fibre, sheet or normal line and the
+  // analytic frame at α(x), over the centroid and the 4 points of the degree-2 rule of
+  // every element; printed below):
+  //   P1, 2 elements through the wall: as rotations 3.3e-14°, old linear rule 2.24°;
+  //   P2, 2 elements:                  as rotations 2.9e-14°, old linear rule 0.955°;
+  //   P2, 1 element (vertices at ±75°, midside 0°): as rotations 2.7e-14°, old linear
+  //   rule 65.5° (the −75° fibre, sign-aligned with +75°, reads as +105°: the helix
+  //   turns back, the wrong handedness).
+  // The rotations are exact to rounding here (the Karcher mean makes the angle Σ N_a α_a,
+  // and α is linear in x); bound 1e-9°. The old rule's error must show, so reverting to
+  // it fails; so does nlerp without the Karcher step (~0.5° on P1), and aligning a P2
+  // element's nodes to vertex 0 instead of along its edges (the 1-element case).
+  ScratchDir dir;
+  for (const auto& [order, through, old_at_least] : {std::tuple{1, 2, 2.0}, {2, 2, 0.5}, {2, 1, 45.0}}) {
+    const TetMesh m = helix_slab(order, through);
+    const FileFrame ff = helix_per_node(dir, m);
+    double err = 0, err_linear = 0;
+    for (int e = 0; e < m.num_tets(); ++e)
+      for (const Bary& l : check_points()) {
+        const Vec3 X = point(m, e, l);
+        const Mat3 Q = ff.at(e, l, X);
+        expect_rotation(Q, fmt::format("P{} element {}", order, e));
+        err = std::max(err, frame_deg(Q, helix_frame(X[0])));
+        err_linear = std::max(err_linear, frame_deg(linear_nodal(ff, m, e, l), helix_frame(X[0])));
+      }
+    std::printf("helix 150° through %d P%d element(s): max frame error %.3g° as rotations, %.3g° linear\n", through,
+                order, err, err_linear);
+    EXPECT_LT(err, 1e-9) << "P" << order << ", " << through;
+    EXPECT_GT(err_linear, old_at_least) << "P" << order << ", " << through;
+  }
+}
+
+TEST(FileFrame, HelixPerNodeIsTheRuleFramePerElementTheCentroidFrame) {
+  ScratchDir dir;
+  const TetMesh m = helix_slab(1);
+  // The rule on this slab (endo xmin, epi xmax, base zmax, apex zmin): c = e_y,
+  // l = e_z, t = e_x, so its frame is helix_frame(x); the nodal file interpolated as
+  // rotations gives it everywhere.
+  RuleFrameOptions ro;
+  ro.endo = "xmin";
+  ro.epi = "xmax";
+  ro.apex = "zmin";
+  ro.base = "zmax";
+  ro.alpha_endo = 75;
+  ro.alpha_epi = -75;
+  const RuleFrame rule(m, ro);
+  const FileFrame nodal = helix_per_node(dir, m);
+  // Per element: the analytic frame at each centroid, written and read back.
+  std::string csv;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const Mat3 Q = helix_frame(point(m, e, kCentroid)[0]);
+    csv += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", e + 1, Q(0, 0), Q(1, 0), Q(2, 0),
+                       Q(0, 1), Q(1, 1), Q(2, 1));
+  }
+  write_text(dir / "helix_elements.csv", csv);
+  FileFrameOptions o;
+  o.file = dir / "helix_elements.csv";
+  o.csv = true;
+  const FileFrame per_element(m, o);
+  double worst_rule = 0;
+  for (int e = 0; e < m.num_tets(); ++e) {
+    const Mat3 centroid = rule.at(e, kCentroid, point(m, e, kCentroid));
+    for (const Bary& l : check_points()) {
+      const Vec3 X = point(m, e, l);
+      worst_rule = std::max(worst_rule, frame_deg(nodal.at(e, l, X), rule.at(e, l, X)));
+      // Per element: the element's frame wherever in it, the rule's at the centroid.
+      const Mat3 Q = per_element.at(e, l, X);
+      expect_rotation(Q, fmt::format("element {}", e));
+      EXPECT_LT(frame_deg(Q, centroid), 1e-9) << e;
+    }
+  }
+  EXPECT_LT(worst_rule, 1e-6) << "nodal file against RuleFrame (degrees)";
+}
+
+TEST(FileFrame, NodalFramesOnAQuadraticMeshAreRotationsAndHitTheNodes) {
+  // Random frames near one another on a P2 mesh: the P2 weights are negative near the
+  // vertices, the mean is still a proper rotation, and at each node it is that node's.
+  ScratchDir dir;
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {1, 1, 1}, -1, 1, 2);
+  const Written w = random_frames(static_cast<std::size_t>(m.num_nodes()), 9, /*smooth=*/true);
+  std::vector<long long> tags;
+  for (int i = 1; i <= m.num_nodes(); ++i) tags.push_back(i);
+  write_text(dir / "p2.csv", w.csv_rows(tags));
+  FileFrameOptions o;
+  o.file = dir / "p2.csv";
+  o.csv = true;
+  o.per = FramePer::node;
+  const FileFrame ff(m, o);
+  for (int e = 0; e < m.num_tets(); ++e) {
+    for (const Bary& l : check_points()) expect_rotation(ff.at(e, l, Vec3()), fmt::format("element {}", e));
+    const std::vector<int> n = m.element_nodes(e);
+    for (int a = 0; a < 4; ++a) {
+      Bary l{};
+      l[a] = 1;
+      const Mat3 Q = ff.at(e, l, Vec3());
+      EXPECT_NEAR((Q.col(0) - w.f[n[a]]).norm(), 0.0, 1e-14);
+      EXPECT_NEAR((Q.col(1) - w.s[n[a]]).norm(), 0.0, 1e-14);
+    }
+    for (int k = 0; k < 6; ++k) {  // at a midside node: its frame
+      Bary l{};
+      l[kTetEdges[k][0]] = l[kTetEdges[k][1]] = 0.5;
+      const Mat3 Q = ff.at(e, l, Vec3());
+      EXPECT_NEAR((Q.col(0) - w.f[n[4 + k]]).norm(), 0.0, 1e-14);
+      EXPECT_NEAR((Q.col(1) - w.s[n[4 + k]]).norm(), 0.0, 1e-14);
+    }
+  }
+}
+
+TEST(FrameMean, TwoFramesGiveBislerpAndCoaxialTurnsAddAngles) {
+  const Mat3 Q0 = turn(Vec3(1, 2, 3), 40);
+  const Mat3 Qa = Q0 * turn(Vec3::UnitZ(), 20), Qb = Q0 * turn(Vec3(0.3, -0.2, 1), 80) * turn(Vec3::UnitX(), 180);
+  const Eigen::Quaterniond q[3] = {Eigen::Quaterniond(Qa), Eigen::Quaterniond(Qb),
+                                   Eigen::Quaterniond(Q0 * turn(Vec3::UnitZ(), -30))};
+  for (double t : {0.0, 0.3, 0.5, 1.0}) {
+    const double w[2] = {1 - t, t};
+    EXPECT_LT(frame_deg(frame_mean(std::span(q, 2), std::span(w, 2)), bislerp(&Qa, &Qb, t)), 1e-9) << t;
+  }
+  // Three turns about Q0's z by 20°, 80° (turned by π about x: the same lines) and −30°,
+  // with affine weights one negative: the turn by the weighted angle.
+  const Eigen::Quaterniond c[3] = {Eigen::Quaterniond(Qa),
+                                   Eigen::Quaterniond(Mat3(Q0 * turn(Vec3::UnitZ(), 80) * turn(Vec3::UnitX(), 180))),
+                                   q[2]};
+  const double w[3] = {-0.25, 0.75, 0.5};
+  const Mat3 M = frame_mean(std::span(c, 3), std::span(w, 3));
+  expect_rotation(M, "mean");
+  EXPECT_LT(frame_deg(M, Q0 * turn(Vec3::UnitZ(), -0.25 * 20 + 0.75 * 80 - 0.5 * 30)), 1e-9);
+}
+
+// -------------------------------------------------------------------------------------
+// Frames per integration point.
+
+/// Per-point CSV rows "tag,point,f,s" of frames[e·np + k], elements in reverse order.
+std::string point_rows(const Written& w, int ne, int np, int skip_tag = 0, int skip_point = -1) {
+  std::string out = "tag,point,fx,fy,fz,sx,sy,sz\n";
+  for (int e = ne - 1; e >= 0; --e)
+    for (int k = 0; k < np; ++k) {
+      if (e + 1 == skip_tag && (skip_point < 0 || k == skip_point)) continue;
+      const std::size_t i = static_cast<std::size_t>(e * np + k);
+      out += fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", e + 1, k, w.f[i][0], w.f[i][1],
+                         w.f[i][2], w.s[i][0], w.s[i][1], w.s[i][2]);
+    }
+  return out;
+}
+
+TEST(FileFrame, PerPointCsvRoundTripsAtTheRulePoints) {
+  ScratchDir dir;
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});  // 12 tets
+  const auto rule = tet_rule(2);
+  ASSERT_EQ(rule.size(), 4u);
+  const Written w = random_frames(48, 4);
+  write_text(dir / "points.csv", point_rows(w, 12, 4));
+  FileFrameOptions o;
+  o.file = dir / "points.csv";
+  o.csv = true;
+  o.per = FramePer::point;
+  o.quadrature_degree = 2;
+  const FileFrame ff(m, o);
+  ASSERT_EQ(ff.points_per_element(), 4);
+  EXPECT_EQ(ff.fibres(), w.f);  // bit for bit, e·4 + k
+  EXPECT_EQ(ff.sheets(), w.s);
+  for (int e = 0; e < 12; ++e) {
+    for (int k = 0; k < 4; ++k) {
+      const Vec4& b = rule[k].bary;
+      const Mat3 Q = ff.at(e, Bary{b[0], b[1], b[2], b[3]}, Vec3());
+      Mat3 read = Mat3::Zero();  // exactly the frame of the vectors as read
+      ASSERT_TRUE(orthonormal_frame(w.f[e * 4 + k], w.s[e * 4 + k], read));
+      EXPECT_EQ(Q, read) << e << " " << k;
+      EXPECT_NEAR((Q.col(0) - w.f[e * 4 + k]).norm(), 0.0, 1e-15) << e << " " << k;
+      EXPECT_NEAR((Q.col(1) - w.s[e * 4 + k]).norm(), 0.0, 4e-15) << e << " " << k;
+      expect_rotation(Q, fmt::format("element {} point {}", e, k));
+    }
+    expect_rotation(ff.at(e, kCentroid, Vec3()), fmt::format("element {} centroid (mean)", e));
+  }
+  // Off the rule's points: the element's mean frame; of equal frames, that frame.
+  Written same;
+  for (int i = 0; i < 48; ++i) {
+    same.f.push_back(w.f[5]);
+    same.s.push_back(w.s[5]);
+  }
+  write_text(dir / "same.csv", point_rows(same, 12, 4));
+  o.file = dir / "same.csv";
+  const Mat3 mean = FileFrame(m, o).at(3, kCentroid, Vec3());
+  EXPECT_NEAR((mean.col(0) - w.f[5]).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((mean.col(1) - w.s[5]).norm(), 0.0, 1e-12);
+  // The default rule: degree 2(order − 1), one point (the centroid) on a linear mesh.
+  write_text(dir / "one.csv", point_rows(w, 12, 1));
+  o.file = dir / "one.csv";
+  o.quadrature_degree = -1;
+  const FileFrame one(m, o);
+  ASSERT_EQ(one.points_per_element(), 1);
+  EXPECT_NEAR((one.at(7, kCentroid, Vec3()).col(0) - w.f[7]).norm(), 0.0, 1e-15);
+}
+
+TEST(FileFrame, BadPerPointFilesNameFileTagAndPoint) {
+  ScratchDir dir;
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});
+  const std::string file = dir / "bad.csv";
+  const Written w = random_frames(48, 5);
+  const auto read = [&](const std::string& text, int degree = 2) {
+    write_text(file, text);
+    FileFrameOptions o;
+    o.file = file;
+    o.csv = true;
+    o.per = FramePer::point;
+    o.quadrature_degree = degree;
+    return input_error([&] { FileFrame ff(m, o); });
+  };
+  const std::string rule4 = "the quadrature rule of degree 2 has 4 points per element (0..3)";
+  std::string msg = read(point_rows(w, 12, 4, 5, 2));  // element 5 lacks point 2
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}': no fibre and sheet for element 5 point 2 (and 0 more points "
+                                 "missing); the file gives 3 points for element 5, expected 4: {}",
+                                 file, rule4)),
+            std::string::npos)
+      << msg;
+  msg = read(point_rows(w, 12, 1));  // written for the 1-point rule, read with the 4-point one
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}': no fibre and sheet for element 1 point 1 (and 35 more points "
+                                 "missing); the file gives 1 points for element 1, expected 4: {}",
+                                 file, rule4)),
+            std::string::npos)
+      << msg;
+  msg = read(point_rows(w, 12, 4), 0);  // written for the 4-point rule, read with the 1-point one
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}' line 3: element 12 point 1: no such point: the quadrature rule of "
+                                 "degree 0 has 1 points per element (0..0), got point 1; expected a file written for "
+                                 "that rule (formulation.quadrature_degree)",
+                                 file)),
+            std::string::npos)
+      << msg;
+  msg = read(point_rows(w, 12, 4) + "7,2,1,0,0,0,1,0\n");
+  EXPECT_NE(msg.find("line 50: element 7 point 2 appears again (first at line"), std::string::npos) << msg;
+  msg = read(point_rows(w, 12, 4) + "13,0,1,0,0,0,1,0\n");
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}' line 50: element 13 point 0 is not a element of the mesh", file)),
+            std::string::npos)
+      << msg;
+  msg = read(point_rows(w, 12, 4, 3, 1) + "3,1.5,1,0,0,0,1,0\n");
+  EXPECT_NE(msg.find("element 3 point 1.5: no such point"), std::string::npos) << msg;
+  msg = read(point_rows(w, 12, 4, 9, 0) + "9,0,1,0,0,0,0.9,0\n");
+  EXPECT_NE(msg.find("element 9 point 0: sheet vector (0, 0.9, 0) has length 0.9, expected a unit vector"),
+            std::string::npos)
+      << msg;
+  msg = read("1,0,1,0,0,0,1\n");
+  EXPECT_NE(msg.find("expected 8 comma-separated numbers tag,point,fx,fy,fz,sx,sy,sz"), std::string::npos) << msg;
+  // Per point from Gmsh views is not read.
+  FileFrameOptions g;
+  g.file = file;
+  g.per = FramePer::point;
+  msg = input_error([&] { FileFrame ff(m, g); });
+  EXPECT_NE(msg.find(fmt::format("fibre file '{}': frames per point are read from a CSV", file)), std::string::npos)
+      << msg;
+}
+
+// -------------------------------------------------------------------------------------
 // The spec keys (checked against the schema on every read) and the VTU output.
 
 FrameFieldSpec read_frame_json(const json& frame, const TetMesh& m, const std::string& base_dir = ".") {
@@ -610,7 +945,7 @@ TEST(FrameSpecKeys, RuleAndFileKindsReadTheirKeysWithDefaults) {
   const FrameFieldSpec file =
       read_frame_json({{"kind", "file"}, {"file", "f.csv"}, {"format", "csv"}}, box, dir / "");
   ASSERT_EQ(file.kind, FrameFieldSpec::Kind::file);
-  EXPECT_FALSE(file.file.per_node);
+  EXPECT_EQ(file.file.per, FramePer::element);
   EXPECT_EQ(file.file.fibre_view, "fibre");
   ASSERT_TRUE(file.loaded);
   EXPECT_EQ(make_frame_field(file, box)->at(3, kCentroid, Vec3()), Mat3::Identity());
@@ -626,6 +961,30 @@ TEST(FrameSpecKeys, RuleAndFileKindsReadTheirKeysWithDefaults) {
                     m);
   });
   EXPECT_NE(unknown.find("unknown key 'fibre' in /frame"), std::string::npos) << unknown;
+}
+
+TEST(FrameSpecKeys, PerPointNeedsCsvAndNumbersPointsByTheQuadratureDegree) {
+  ScratchDir dir;
+  const TetMesh box = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {2, 1, 1});
+  write_text(dir / "p.csv", point_rows(random_frames(48, 6), 12, 4));
+  const json frame = {{"kind", "file"}, {"file", "p.csv"}, {"format", "csv"}, {"per", "point"}};
+  const json j = {{"frame", frame}};
+  SpecNode root(j, "", run_spec_schema());
+  SpecNode f = root.child("frame");
+  const FrameFieldSpec spec = read_frame_field_spec(f, box, dir / "", "", 2);
+  f.finish();
+  EXPECT_EQ(spec.file.per, FramePer::point);
+  EXPECT_EQ(spec.file.quadrature_degree, 2);
+  ASSERT_TRUE(spec.loaded);
+  // The default degree on a linear mesh is 0 (one point): this file has four.
+  std::string msg = input_error([&] { read_frame_json(frame, box, dir / ""); });
+  EXPECT_NE(msg.find("element 12 point 1: no such point: the quadrature rule of degree 0 has 1 points"),
+            std::string::npos)
+      << msg;
+  json gmsh = frame;
+  gmsh["format"] = "gmsh";
+  msg = input_error([&] { read_frame_json(gmsh, box, dir / ""); });
+  EXPECT_NE(msg.find("/frame/format: got \"gmsh\", expected \"csv\" for frames per point"), std::string::npos) << msg;
 }
 
 TEST(FrameOutput, VtuCellVectorsAreTheCentroidFrames) {

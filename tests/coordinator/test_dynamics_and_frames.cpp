@@ -1,9 +1,16 @@
 // Newmark-β inertia and fibre frames.
 #include "tests/coordinator/scene_fixtures.h"
 
+#include "coordinator/MacroPoints.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <Eigen/Geometry>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 namespace fe2 {
 namespace {
@@ -64,6 +71,56 @@ TEST(FibreFrame, RotatingRuleTurnsFibresAboutTheAxisAndStaysOrthonormal) {
     const double angle = std::atan2(-Q(2, 0), Q(0, 0)) * 180.0 / M_PI;  // rotation about +y
     EXPECT_NEAR(angle, expected, 1e-10) << "y = " << y;
   }
+}
+
+// A fibre file per integration point: each macro point (numbered as MacroPoints numbers
+// them, by formulation.quadrature_degree) gets exactly its line's frame, evaluated as
+// PointCoupling evaluates it; read with another rule, the file is refused.
+TEST(FibreFrame, PerPointFileGivesEachMacroPointItsFrame) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / fmt::format("fe2_per_point_frames_{}", getpid());
+  fs::create_directories(dir);
+  json j = cantilever("quasi_static", 1, 1.0);
+  j["formulation"] = {{"quadrature_degree", 2}};
+  j["frame"] = {{"kind", "file"}, {"file", "points.csv"}, {"format", "csv"}, {"per", "point"}};
+  const int ne = 4 * 6, np = 4;  // 4x1x1 box cells of 6 tets, the 4-point rule
+  const auto frame_of = [](int e, int k) {
+    return Mat3(Eigen::AngleAxisd((7.0 * e + 40.0 * k) * M_PI / 180, Vec3(1, 2, 3).normalized()));
+  };
+  {
+    std::ofstream out(dir / "points.csv");
+    out << "tag,point,fx,fy,fz,sx,sy,sz\n";
+    for (int e = 0; e < ne; ++e)
+      for (int k = np - 1; k >= 0; --k) {
+        const Mat3 Q = frame_of(e, k);
+        out << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n", e + 1, k, Q(0, 0), Q(1, 0),
+                           Q(2, 0), Q(0, 1), Q(1, 1), Q(2, 1));
+      }
+  }
+  const std::string spec_file = (dir / "spec.json").string();
+  const RunSpec spec = read_run_spec(j, spec_file);
+  ASSERT_EQ(spec.points_per_element, np);
+  const MacroPoints points(spec.mesh, spec.formulation.quadrature_degree);
+  const auto field = spec.frame.built ? spec.frame.built : make_frame_field(spec.frame.field, spec.mesh);
+  double worst = 0;
+  for (int p = 0; p < points.size(); ++p) {
+    const Vec4& l = points[p].bary;
+    const int e = points[p].element;
+    const Mat3 Q = field->at(e, Bary{l[0], l[1], l[2], l[3]}, points[p].X);
+    worst = std::max(worst, (Q - frame_of(e, p - points.first_point(e))).norm());
+  }
+  EXPECT_LT(worst, 1e-15);
+  j["formulation"] = json::object();  // the default rule on linear tets: one point
+  try {
+    read_run_spec(j, spec_file);
+    ADD_FAILURE() << "a 4-point file read with the 1-point rule";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: element 1 point 3: no such point: the quadrature "
+                                         "rule of degree 0 has 1 points per element (0..0), got point 3"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
 }
 
 TEST(RunSpecErrors, UnknownSetAndModelAreNamedWithSuggestions) {
