@@ -21,7 +21,8 @@
 namespace fe2 {
 
 double ramp_factor(Ramp ramp, double t, double t_end) {
-  return ramp == Ramp::constant ? 1.0 : t / t_end;
+  // Before t = 0 (an end-diastolic inflation) a linear ramp has not started.
+  return ramp == Ramp::constant ? 1.0 : std::max(t, 0.0) / t_end;
 }
 
 Mat3 FrameSpec::at(const Vec3& X) const {
@@ -476,6 +477,7 @@ void read_time(SpecNode t, RunSpec& spec) {
   spec.beats = t.integer("beats");
   spec.steps_per_beat = t.integer("steps_per_beat");
   spec.periodic_tolerance = t.number("periodic_tolerance");
+  spec.inflation_steps = t.integer("inflation_steps");
   if (spec.beats > 0 && (t.has("t_end") || t.has("steps")))
     t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
   t.finish();
@@ -522,6 +524,17 @@ void read_circulation(SpecNode& root, RunSpec& spec) {
         throw InputError(fmt::format("/pressure: a prescribed pressure on '{}', the surface of cavity '{}' "
                                      "whose pressure the circulation sets; expected no /pressure entry there",
                                      ps.surface, spec.cavities[c].first));
+}
+
+/// time.inflation_steps: steps of the beat's size before t = 0, counted in `steps`.
+void add_inflation_steps(RunSpec& spec) {
+  if (spec.inflation_steps == 0) return;
+  if (!spec.circulation)
+    throw InputError(fmt::format("/time/inflation_steps: got {}, expected 0 without a /circulation (the wall is "
+                                 "inflated to the circulation's filling pressure)",
+                                 spec.inflation_steps));
+  spec.t_start = -spec.inflation_steps * (spec.t_end / spec.steps);
+  spec.steps += spec.inflation_steps;
 }
 
 void read_probes(SpecNode probes, RunSpec& spec) {
@@ -591,6 +604,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   if (spec.beats > 0 && !spec.circulation)
     throw InputError(fmt::format("/time/beats: got {}, expected 0 without a /circulation (a beat lasts its period)",
                                  spec.beats));
+  add_inflation_steps(spec);
 
   read_probes(root.child("probes"), spec);
   spec.farm = FarmOptions::from_spec(root.child("farm"));

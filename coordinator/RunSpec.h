@@ -106,6 +106,20 @@ struct RunSpec {
   int beats = 0;                  ///< time.beats (0: t_end and steps); t_end = beats · period
   int steps_per_beat = 0;
   double periodic_tolerance = 0;  ///< stop once the EDV changes less than this over a beat
+  /// time.inflation_steps: the first steps (of `steps`) inflate the wall to end-diastole
+  /// in [t_start, 0]; the beat is (0, t_end].
+  int inflation_steps = 0;
+  double t_start = 0;             ///< −inflation_steps · the beat's step (0 without inflation)
+  /// The nominal step (t_end − t_start) / steps.
+  double dt() const { return (t_end - t_start) / steps; }
+  /// Where step `step` (from 0) ends.
+  double step_end_time(int step) const {
+    if (step + 1 == steps) return t_end;
+    if (step + 1 == inflation_steps) return 0.0;  // exactly: the beat starts there
+    return t_start + (step + 1) * dt();
+  }
+  /// Whether a step ending at `t` inflates the wall (time.inflation_steps).
+  bool inflating(double t) const { return inflation_steps > 0 && t <= 0.0; }
 
   int newton_max_iterations = 0;
   double newton_rtol = 0;         ///< macro residual, relative to max(‖f_int‖, ‖f_ext‖)

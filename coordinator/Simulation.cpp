@@ -260,11 +260,13 @@ void Simulation::rollback() {
 // --- time stepping
 
 std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
-  const double dt_nominal = spec_.t_end / spec_.steps;
+  const double dt_nominal = spec_.dt();
   int cut = 0;
   while (problem_.committed_time() < t_target - 1e-12 * spec_.t_end) {
     const double t_n = problem_.committed_time();
-    const double t_new = std::min(t_n + dt_nominal / std::ldexp(1.0, cut), t_target);
+    double t_new = std::min(t_n + dt_nominal / std::ldexp(1.0, cut), t_target);
+    // The inflation ends, and the beat starts, at t = 0 exactly (not at a rounding of it).
+    if (t_target == 0.0 && -t_new < 1e-12 * spec_.t_end) t_new = 0.0;
     std::string why;
     try {
       if (newton(step, t_new, t_new - t_n, rec)) {
@@ -301,13 +303,16 @@ std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
 bool Simulation::beat_is_periodic(RunResult& result) const {
   // At the end of beat b ≥ 2: the largest relative change of a cavity's EDV (its largest
   // volume over the beat) from beat b − 1. The same on every coordinator (x is).
-  const int per = spec_.steps_per_beat, n = static_cast<int>(result.history.size());
-  if (spec_.beats == 0 || per == 0 || n % per != 0 || n < 2 * per) return false;
+  // The beat's steps follow the inflation's.
+  const int per = spec_.steps_per_beat, first = spec_.inflation_steps;
+  const int n = static_cast<int>(result.history.size()) - first;
+  if (spec_.beats == 0 || per == 0 || n <= 0 || n % per != 0 || n < 2 * per) return false;
   double change = 0.0;
+  const auto& h = result.history;
   for (size_t c = 0; c < spec_.cavities.size(); ++c) {
     double last = 0.0, before = 0.0;
-    for (int s = n - per; s < n; ++s) last = std::max(last, result.history[s].cavity_volumes[c]);
-    for (int s = n - 2 * per; s < n - per; ++s) before = std::max(before, result.history[s].cavity_volumes[c]);
+    for (int s = first + n - per; s < first + n; ++s) last = std::max(last, h[s].cavity_volumes[c]);
+    for (int s = first + n - 2 * per; s < first + n - per; ++s) before = std::max(before, h[s].cavity_volumes[c]);
     change = std::max(change, std::abs(last - before) / last);
   }
   result.edv_change = change;
@@ -322,12 +327,11 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
   on_iteration_ = on_iteration;
   RunResult result = std::move(done);
   result.converged = false;
-  const double dt_nominal = spec_.t_end / spec_.steps;
   for (int step = result.steps; step < spec_.steps; ++step) {
     StepRecord rec;
     rec.step = step;
     const double t0 = wall_seconds();
-    const double t_target = (step + 1 == spec_.steps) ? spec_.t_end : (step + 1) * dt_nominal;
+    const double t_target = spec_.step_end_time(step);
     result.error = advance(step, t_target, rec);
     if (!result.error.empty()) {
       result.history.push_back(rec);
@@ -347,7 +351,8 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     if (beat_is_periodic(result)) {
       spdlog::info("periodic after {} beats: EDV changed by {:.2e} (relative) over the last beat, "
                    "below time.periodic_tolerance = {:.1e}",
-                   (step + 1) / spec_.steps_per_beat, result.edv_change, spec_.periodic_tolerance);
+                   (step + 1 - spec_.inflation_steps) / spec_.steps_per_beat, result.edv_change,
+                   spec_.periodic_tolerance);
       result.periodic = true;
       break;
     }

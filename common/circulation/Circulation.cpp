@@ -92,6 +92,41 @@ void Circulation::set_cavity_pressures(std::span<double> state, std::span<const 
   for (int c = 0; c < cavities(); ++c) state[unknowns_ + c] = p_cav[c];
 }
 
+std::vector<double> Circulation::filling_pressures(std::span<const double> state) const {
+  FE2_CHECK(static_cast<int>(state.size()) == state_size(), "state of {} doubles, expected {}", state.size(),
+            state_size());
+  const std::span<const double> p_cav = state.subspan(static_cast<size_t>(unknowns_));
+  std::vector<double> p;
+  for (int c = 0; c < cavities(); ++c) p.push_back(node_pressure(links_[inflow_valve_[c]].from, 0.0, p_cav, state));
+  return p;
+}
+
+void Circulation::report_compartments(double t, std::span<const double> p_cav, std::span<const double> y,
+                                      CavityFlows& f) const {
+  for (size_t k = 0; k < nodes_.size(); ++k) {
+    f.pressures.push_back(node_pressure(static_cast<int>(k), t, p_cav, y));
+    const bool stores = nodes_[k].kind == NodeKind::compliance || nodes_[k].kind == NodeKind::elastance;
+    f.volumes.push_back(stores ? y[node_unknown_[k]] : 0.0);
+  }
+}
+
+CavityFlows Circulation::at_rest(double t, std::span<const double> p_cav, std::span<const double> state) const {
+  FE2_CHECK(static_cast<int>(state.size()) == state_size() && static_cast<int>(p_cav.size()) == cavities(),
+            "at_rest: state of {} doubles, {} cavity pressures", state.size(), p_cav.size());
+  CavityFlows f;
+  f.n = cavities();
+  f.Q_net.assign(f.n, 0.0);
+  f.dQ_dp.assign(static_cast<size_t>(f.n) * f.n, 0.0);
+  f.Q_in.assign(f.n, 0.0);
+  f.Q_out.assign(f.n, 0.0);
+  f.inflow_open.assign(f.n, false);
+  f.outflow_open.assign(f.n, false);
+  f.phase.assign(f.n, "inflation");
+  report_compartments(t, p_cav, state, f);
+  f.flows.assign(links_.size(), 0.0);
+  return f;
+}
+
 double Circulation::node_pressure(int k, double t, std::span<const double> p_cav,
                                   std::span<const double> y) const {
   const Node& node = nodes_[k];
@@ -279,11 +314,7 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
     f.outflow_open.push_back(out_open);
     f.phase.push_back(phase(in_open, out_open, p_cav[c] - committed[m + c]));
   }
-  for (size_t k = 0; k < nodes_.size(); ++k) {
-    f.pressures.push_back(node_pressure(static_cast<int>(k), t_new, p_cav, y));
-    const bool stores = nodes_[k].kind == NodeKind::compliance || nodes_[k].kind == NodeKind::elastance;
-    f.volumes.push_back(stores ? y[node_unknown_[k]] : 0.0);
-  }
+  report_compartments(t_new, p_cav, y, f);
   f.flows.assign(ev.Q.data(), ev.Q.data() + nl);
 
   std::copy(y.begin(), y.end(), current.begin());

@@ -104,6 +104,14 @@ class Circulation {
   /// Sets the cavity pressures of the last step in `state` (the owner's initial
   /// pressures, so the first step's phase sees the right sign of dp).
   void set_cavity_pressures(std::span<double> state, std::span<const double> p_cav) const;
+  /// Per cavity, the pressure upstream of its inflow valve at t = 0 in `state` (the
+  /// preload, or the atrium's): the filling pressure of end-diastole, to which a wall is
+  /// inflated before the first beat.
+  std::vector<double> filling_pressures(std::span<const double> state) const;
+  /// The network held at `state` with the cavities at `p_cav` and no flow (a wall being
+  /// inflated before the first beat): every compartment's pressure and volume at t,
+  /// zero flows, phase "inflation", both valves reported shut.
+  CavityFlows at_rest(double t, std::span<const double> p_cav, std::span<const double> state) const;
   /// Heart period of its time-varying elastances (s).
   double period() const { return period_; }
   /// Blood held by the compartments of `state` (mm³; cavities excluded).
@@ -125,6 +133,9 @@ class Circulation {
   struct Evaluation;
   void evaluate(double t, double dt, std::span<const double> p_cav, std::span<const double> y_n,
                 std::span<const double> y, Evaluation& e) const;
+  /// Every compartment's pressure and volume at (t, p_cav, y) into f.pressures, f.volumes.
+  void report_compartments(double t, std::span<const double> p_cav, std::span<const double> y,
+                           CavityFlows& f) const;
   double node_pressure(int k, double t, std::span<const double> p_cav,
                        std::span<const double> y) const;
 

@@ -333,7 +333,13 @@ Schema make_run_spec_schema() {
                 {"steps_per_beat", integer(100, Range::closed(1, 1e7), "steps per beat (with beats)")},
                 {"periodic_tolerance",
                  number(0.0, Range::non_negative(),
-                        "stop before the last beat once every cavity's EDV changed by less than this (relative) over a beat; 0: run every beat")}})},
+                        "stop before the last beat once every cavity's EDV changed by less than this (relative) over a beat; 0: run every beat")},
+                {"inflation_steps",
+                 integer(0, Range::closed(0, 1e5),
+                         "steps of the beat's size before t = 0 that inflate the resting wall to the circulation's "
+                         "filling pressure (each cavity's pressure ramped to the one upstream of its inflow valve), "
+                         "so the first beat starts at end-diastole; needs a circulation; 0: the beat starts from "
+                         "the unloaded wall")}})},
        {"newton",
         object(false, "Newton–Raphson",
                {{"max_iterations", integer(20, Range::closed(1, 1000),

@@ -11,6 +11,7 @@ CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, const MacroPartition
   committed_.assign(circulation_.state_size(), 0.0);
   circulation_.initial_state(committed_);
   current_ = committed_;
+  p_fill_ = circulation_.filling_pressures(committed_);
   const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(3 * spec.mesh.num_nodes());
   for (int c : spec.coupled_cavities) {
     Cavity cav;
@@ -51,7 +52,10 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const int n = static_cast<int>(cavities_.size());
   std::vector<double> p(n);
   for (int i = 0; i < n; ++i) p[i] = state.x[cavity_dofs_[i]];
-  if (owns_rows_) flows_ = circulation_.step(state.time, state.dt, p, committed_, current_);
+  const bool inflating = spec_.inflating(state.time);
+  if (owns_rows_)
+    flows_ = inflating ? circulation_.at_rest(0.0, p, committed_)
+                       : circulation_.step(state.time, state.dt, p, committed_, current_);
   Eigen::VectorXd f1;
   Eigen::MatrixXd dfdx1;
   std::vector<Vec3> x;
@@ -67,7 +71,7 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
       out.add_tangent(f.local_up, -f1);
       out.add_external(f.dofs, p[i] * f1);
     }
-    if (!owns_rows_) continue;
+    if (!owns_rows_ || inflating) continue;
     // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
     const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u_->at_every_node(state.x, spec_.mesh.num_nodes()));
     Eigen::MatrixXd row(1, static_cast<Eigen::Index>(v.dV_du.size()));
@@ -76,9 +80,26 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
     out.add_internal({cav.dof}, Eigen::VectorXd::Constant(1, v.volume - V_n_[i] - state.dt * flows_.Q_net[i]));
   }
   if (!owns_rows_) return;
+  if (inflating) {
+    assemble_inflation(state.time, p, out);
+    return;
+  }
   Eigen::MatrixXd Kpp(n, n);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) Kpp(i, j) = -state.dt * flows_.dQ(i, j);
+  out.add_tangent(local_pp_, Kpp);
+}
+
+void CavityPressureTerm::assemble_inflation(double t, const std::vector<double>& p, MacroAssembly& out) const {
+  // R_c = (V_ref / p_s)(p_c − p_fill (t − t_start)/(−t_start)): linear, exact in one step.
+  const int n = static_cast<int>(cavities_.size());
+  const double ramp = (t - spec_.t_start) / -spec_.t_start;
+  Eigen::MatrixXd Kpp = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    const double s = V_ref_[i] / std::max(p_fill_[i], 1000.0);
+    Kpp(i, i) = s;
+    out.add_internal({cavity_dofs_[i]}, Eigen::VectorXd::Constant(1, s * (p[i] - p_fill_[i] * ramp)));
+  }
   out.add_tangent(local_pp_, Kpp);
 }
 
@@ -88,7 +109,15 @@ void CavityPressureTerm::add_residual_scale(const Field& field, Eigen::VectorXd&
 }
 
 void CavityPressureTerm::commit(const MacroState& state) {
-  committed_ = current_;
+  if (spec_.inflating(state.time)) {
+    // The circulation stood still; only the cavity pressures it last saw follow the wall.
+    std::vector<double> p;
+    for (int dof : cavity_dofs_) p.push_back(state.x[dof]);
+    circulation_.set_cavity_pressures(committed_, p);
+    current_ = committed_;
+  } else {
+    committed_ = current_;
+  }
   const Eigen::VectorXd u = u_->at_every_node(state.x, spec_.mesh.num_nodes());
   for (size_t i = 0; i < cavities_.size(); ++i) V_n_[i] = cavity_volume(spec_.mesh, cavities_[i].surface, u).volume;
 }

@@ -16,6 +16,13 @@
 //
 // R_c has the units of a volume; its scale is the cavity's unloaded volume.
 //
+// While the wall is inflated to end-diastole before the first beat (time.inflation_steps,
+// t ≤ 0) the circulation stands still and each cavity's pressure is prescribed instead,
+// ramped from 0 at t_start to the circulation's filling pressure p_fill,c at t = 0:
+//   R_c = (V_c,ref / p_s) (p_c − p_fill,c (t − t_start)/(−t_start)),  p_s = max(p_fill,c, 1 kPa).
+// The circulation's state is unchanged by it; the last committed cavity pressures (the
+// phase's dp) follow the wall.
+//
 // The pressure load on a face is assembled by the coordinator owning the face's tet; the
 // volume rows R_c need the whole surface (and the circulation), so the coordinator owning
 // the global unknowns assembles them (MacroPartition). MUMPS sums the distributed input.
@@ -61,6 +68,9 @@ class CavityPressureTerm final : public MacroTerm {
     std::vector<int> volume_dofs;   ///< the same as DOFs of the displacement field
     int local_pu = -1;
   };
+  /// The rows R_c of the end-diastolic inflation (prescribed cavity pressures).
+  void assemble_inflation(double t, const std::vector<double>& p, MacroAssembly& out) const;
+
   const RunSpec& spec_;
   const Circulation& circulation_;
   bool owns_rows_;  ///< this coordinator assembles R_c (MacroPartition::owns_globals)
@@ -71,6 +81,7 @@ class CavityPressureTerm final : public MacroTerm {
   std::vector<int> cavity_dofs_;
   std::vector<double> committed_, current_;  ///< circulation state
   std::vector<double> V_n_, V_ref_;
+  std::vector<double> p_fill_;  ///< per cavity: the filling pressure of end-diastole
   CavityFlows flows_;
 };
 

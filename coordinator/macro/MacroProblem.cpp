@@ -21,6 +21,7 @@ MacroProblem::MacroProblem(const RunSpec& spec, const proto::Group& group, Macro
   x_n_ = x_;
   v_n_ = v_;
   a_n_ = a_;
+  t_n_ = spec.t_start;
   prescribed_value_ = [this](int k, double t) { return system_.prescribed_value(k, t); };
 }
 

@@ -273,15 +273,24 @@ json cavity_entries(const RunSpec& spec, const std::vector<double>& reference_vo
   return cavities;
 }
 
-/// The coupled cavities' samples as `fe2heart circulation` has them: the undeformed
-/// state at rest, then one per step up to a failed last step (which has no flows).
+/// The coupled cavities' samples as `fe2heart circulation` has them: the state at t = 0
+/// (the undeformed wall at rest, or the end of the end-diastolic inflation), then one per
+/// beat step up to a failed last step (which has no flows).
 std::vector<CirculationSample> circulation_samples(const RunSpec& spec, const std::vector<StepRecord>& history,
                                                    const std::vector<double>& reference_volumes) {
   const Circulation& c = *spec.circulation;
   std::vector<CirculationSample> run(1);
-  run[0].p.assign(c.cavities(), 0.0);
-  for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(reference_volumes[spec.coupled_cavities[k]]);
-  for (const auto& h : history) {
+  const size_t first = static_cast<size_t>(spec.inflation_steps);
+  if (first > 0 && history.size() < first) return {};  // stopped while inflating: no beat yet
+  if (first > 0) {
+    run[0].p = history[first - 1].cavity_pressures;
+    for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(history[first - 1].cavity_volumes[spec.coupled_cavities[k]]);
+  } else {
+    run[0].p.assign(c.cavities(), 0.0);
+    for (int k = 0; k < c.cavities(); ++k) run[0].V.push_back(reference_volumes[spec.coupled_cavities[k]]);
+  }
+  for (size_t i = first; i < history.size(); ++i) {
+    const StepRecord& h = history[i];
     if (h.circulation.n == 0) break;
     CirculationSample x;
     x.t = h.time;
@@ -338,10 +347,12 @@ void RunOutput::write_circulation(const RunSpec& spec, const RunResult& r, bool 
   const std::vector<CirculationSample> run = circulation_samples(spec, r.history, reference_volumes_);
   if (run.size() >= 3) {
     s["circulation"] = beat_report(*spec.circulation, run);
+    // Sample k is the beat's step k; steps count the inflation's too (output file numbers).
+    s["circulation"]["systole_step"] = s["circulation"]["systole_step"].get<int>() + spec.inflation_steps;
     s["circulation"]["periodic"] = r.periodic;
     s["circulation"]["EDV_change_last_beat"] = r.edv_change;
   }
-  if (complete) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(*spec.circulation, run));
+  if (complete && !run.empty()) write_file_atomically(dir_ + "/circulation.csv", circulation_csv(*spec.circulation, run));
 }
 
 void RunOutput::write(const Simulation& sim, const RunResult& r, double wall, bool complete) {

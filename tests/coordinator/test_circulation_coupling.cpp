@@ -227,5 +227,62 @@ TEST(CirculationCoupling, CellsOutOfStepWithTheCirculationAreWarnedAbout) {
   EXPECT_TRUE(read_run_spec(j, "").warnings.empty());
 }
 
+// time.inflation_steps: before the beat the resting wall is inflated to the circulation's
+// filling pressure (the preload's 1 kPa), so the beat starts at end-diastole. At t = 0
+// exactly the cavity pressure is the filling pressure, the wall is where a plain passive
+// inflation by that follower pressure puts it, and the circulation has not moved; the
+// beat's figures (summary, circulation.csv) start from that state.
+TEST(CirculationCoupling, InflationStartsTheBeatAtEndDiastole) {
+  json j = lv_beat(4, 0.04);
+  j["time"]["inflation_steps"] = 5;
+  const RunSpec spec = read_run_spec(j, "");
+  EXPECT_EQ(spec.steps, 9);
+  EXPECT_DOUBLE_EQ(spec.t_start, -0.05);
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points);
+  const RunResult r = sim.run();
+  ASSERT_TRUE(r.converged) << r.error;
+  ASSERT_EQ(r.history.size(), 9u);
+  const StepRecord& ed = r.history[4];
+  EXPECT_EQ(ed.time, 0.0);
+  const auto names = spec.circulation->compartment_names();
+  const size_t arterial = static_cast<size_t>(std::find(names.begin(), names.end(), "lv.arterial") - names.begin());
+  ASSERT_LT(arterial, names.size());
+  for (int s = 0; s < 5; ++s) {
+    const StepRecord& h = r.history[s];
+    EXPECT_EQ(h.circulation.phase[0], "inflation") << "step " << s;
+    // The prescribed ramp, met to round-off (the row is linear in p_c).
+    EXPECT_NEAR(h.cavity_pressures[0], 1000.0 * (s + 1) / 5.0, 1e-9) << "step " << s;
+    EXPECT_EQ(h.circulation.Q_net[0], 0.0);
+    // The arteries keep their initial pressure while the wall inflates.
+    EXPECT_EQ(h.circulation.pressures[arterial], 9000.0);
+  }
+  EXPECT_NE(r.history[5].circulation.phase[0], "inflation");
+
+  // The same wall inflated by a follower pressure ramped to 1 kPa over as many steps, no
+  // circulation; its cells rest too (excited at 0.1 s, after the ramp).
+  json passive = lv_beat(5, 0.05);
+  passive.erase("circulation");
+  passive["pressure"] = {{{"surface", "endo"}, {"value", 1000.0}}};
+  const RunSpec pspec = read_run_spec(passive, "");
+  LocalEvaluator ppoints(pspec.models, pspec.model_of_points());
+  Simulation psim(pspec, ppoints);
+  const RunResult pr = psim.run();
+  ASSERT_TRUE(pr.converged) << pr.error;
+  const double V_passive = pr.history.back().cavity_volumes[0];
+  const double V_ref = sim.cavity_term()->reference_volumes()[0];
+  ASSERT_GT(V_passive, 1.05 * V_ref);  // the wall did inflate
+  // Viscosity and the cells' rest act alike in both; only the Newton tolerances differ.
+  EXPECT_NEAR(ed.cavity_volumes[0], V_passive, 1e-7 * V_passive);
+
+  passive["time"]["inflation_steps"] = 3;  // nothing to inflate to without a circulation
+  try {
+    read_run_spec(passive, "");
+    ADD_FAILURE() << "inflation without a circulation accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/time/inflation_steps: got 3"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace fe2
