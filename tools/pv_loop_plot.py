@@ -39,8 +39,15 @@ def main():
     # The cavities of the CSV (a `run` summary also lists cavities without a circulation).
     cavities = [k[2:] for k in rows[0] if k.startswith("p_")]
     t = [float(r["t"]) for r in rows]
-    beats, steps = summary.get("beats", 0), summary.get("steps", len(rows) - 1)
-    start = len(rows) - 1 - (steps // beats if beats else steps)  # the last beat's first row
+    # The last beat's first row: the last period's (the rows start at t = 0, end-diastole
+    # after an inflation; a run shorter than a period is one beat).
+    circ = summary.get("circulation")
+    if isinstance(circ, dict) and circ.get("period", 0.0) > 0:  # `fe2heart run`
+        period = circ["period"]
+        start = next(i for i, x in enumerate(t) if x >= t[-1] - period * (1 + 1e-9))
+    else:  # `fe2heart circulation`: whole beats of steps // beats rows
+        beats, steps = summary.get("beats", 0), summary.get("steps", len(rows) - 1)
+        start = max(0, len(rows) - 1 - (steps // beats if beats else steps))
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(11, 4.3))
     for name in cavities:
         V = [float(r[f"V_{name}"]) / 1000.0 for r in rows]
