@@ -174,6 +174,19 @@ std::string format_duration(double s) {
   return fmt::format("{:.1f} h", s / 3600);
 }
 
+/// The run spec's JSON, with --beats in place of time.beats (spec.json records it).
+json spec_json(const RunOptions& o) {
+  json j = read_json_file(o.spec);
+  if (o.beats <= 0) return j;
+  const json* time = j.is_object() && j.contains("time") ? &j["time"] : nullptr;
+  if (!time || !time->is_object() || !time->contains("beats"))
+    throw InputError(fmt::format("--beats {}: {} has no time.beats, expected a spec of whole beats "
+                                 "(time.beats and time.steps_per_beat)",
+                                 o.beats, o.spec));
+  j["time"]["beats"] = o.beats;
+  return j;
+}
+
 }  // namespace
 
 // Checks everything a run would read, but builds no unit model: only counts, the
@@ -225,7 +238,7 @@ int run(const RunOptions& o) {
   Restart restart;  // rank 0
   std::string input_error;
   try {
-    spec = read_run_spec_file(o.spec, /*build_units=*/false);  // built below, if they fit
+    spec = read_run_spec(spec_json(o), o.spec, nullptr, /*build_units=*/false);  // built below, if they fit
     if (rank == 0 && !o.restart.empty()) restart = open_restart(o, spec);
     // Before anything is written; a restart continues in its own folder.
     if (rank == 0 && !restart.in_place)

@@ -19,6 +19,7 @@ struct RunOptions {
   bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)
   std::string restart;     ///< a checkpoint file or a run folder to continue from
   bool force = false;      ///< restart although the spec changed beyond output/farm
+  int beats = 0;           ///< > 0: replaces the spec's time.beats (a spec of whole beats)
 };
 int run(const RunOptions& o);
 /// `memory_limit` as in RunOptions.

@@ -42,6 +42,10 @@ int main(int argc, char** argv) {
                     "continue from a checkpoint: a run folder (its newest good checkpoint.bin, else "
                     "checkpoint.bin.previous) or a checkpoint file; any number of ranks and "
                     "coordinators. With --out the same folder, its traces, series and summary continue");
+  c_run->add_option("--beats", run.beats,
+                    "run this many beats (replaces time.beats of a spec of whole beats; with "
+                    "time.periodic_tolerance it stops earlier once periodic)")
+      ->check(CLI::Range(1, 10000));
   c_run->add_flag("--force", run.force,
                   "--restart although the spec differs from the checkpoint's outside output, farm and "
                   "title (e.g. a later time.t_end, other tolerances); the state must still fit the spec "
