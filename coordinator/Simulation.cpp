@@ -331,12 +331,25 @@ std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
     // An element that inverts again and again as the step shrinks: say whether it is the mesh.
     const std::string diagnosis = inversions.record(spec_.mesh, why);
     if (!stepper_.failed())
-      return fmt::format("step {} (t = {:.6g} → {:.6g}) failed {}: {}{}", step, t_n, t_new,
-                         stepper_.give_up_reason(), why, diagnosis);
+      return fmt::format("step {} (t = {:.6g} → {:.6g}) failed {}: {}{}{}", step, t_n, t_new,
+                         stepper_.give_up_reason(), why, diagnosis, volume_diagnosis());
     ++rec.cutbacks;
     spdlog::warn("step {}: {}; cutting the step to dt = {:.4g}", step, why, stepper_.dt());
   }
   return "";
+}
+
+std::string Simulation::volume_diagnosis() const {
+  if (!spec_.formulation.mixed) return "";
+  // J̄_e of the committed state, the volume-weighted mean of det F̄ over each element's points.
+  std::vector<double> J(spec_.mesh.num_tets(), 0.0), volume(spec_.mesh.num_tets(), 0.0);
+  for (int k = 0; k < points().size(); ++k) {
+    const MacroPoint& p = points()[k];
+    J[p.element] += p.volume * (Mat3::Identity() + as_mat3(displacement_gradient(k))).determinant();
+    volume[p.element] += p.volume;
+  }
+  for (size_t e = 0; e < J.size(); ++e) J[e] = volume[e] > 0.0 ? J[e] / volume[e] : -1.0;
+  return fe2::volume_diagnosis(spec_.mesh, J, !spec_.formulation.element_pressure);
 }
 
 bool Simulation::beat_is_periodic(RunResult& result) const {

@@ -199,6 +199,9 @@ class Simulation {
   /// (fixed: halving on failure, newton.max_cutbacks; or time.adaptive); returns "" or why
   /// it gave up (the state then rolled back). @note Collective.
   std::string advance(int step, double t_target, StepRecord& rec);
+  /// Why a failing mixed run's elements may be the cause: failure_diagnosis.h's
+  /// volume_diagnosis of the committed state ("" if nothing stands out).
+  std::string volume_diagnosis() const;
   /// The step's observables: cavity volumes, probes, cavity pressures and flows, loads.
   void observe(StepRecord& rec) const;
   /// time.beats: records the last beat's EDV change; true when below the tolerance.

@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/mesh/element_quality.h"
 
+#include <cmath>
 #include <regex>
 
 namespace fe2 {
@@ -15,6 +16,29 @@ int inverted_element(const std::string& why) {
 }
 
 bool badly_shaped(double jacobian_ratio, double shape) { return jacobian_ratio < 0.25 || shape < 0.1; }
+
+std::string volume_diagnosis(const TetMesh& mesh, const std::vector<double>& element_J, bool p1_pressure) {
+  // 5 %: far beyond what a converged mixed solution leaves (10⁻⁶ with P1+P0; a percent
+  // or two with P1 at moderate strain), well before an element collapses.
+  constexpr double kVolumeChange = 0.05;
+  int worst = -1;
+  for (size_t e = 0; e < element_J.size(); ++e)
+    if (element_J[e] > 0.0 && (worst < 0 || std::abs(element_J[e] - 1.0) > std::abs(element_J[worst] - 1.0)))
+      worst = static_cast<int>(e);
+  if (worst < 0 || std::abs(element_J[worst] - 1.0) <= kVolumeChange) return "";
+  int changed = 0;
+  for (double J : element_J) changed += J > 0.0 && std::abs(J - 1.0) > kVolumeChange;
+  const ElementQuality q = element_quality(mesh, worst);
+  std::string text = fmt::format(
+      "; at the last converged state {} element(s) have changed volume by more than {:.0f} %, most element {} "
+      "(centroid ({:.3g}, {:.3g}, {:.3g})) to J = {:.3f}",
+      changed, 100 * kVolumeChange, worst, q.centroid[0], q.centroid[1], q.centroid[2], element_J[worst]);
+  if (p1_pressure)
+    text += ": the P1 pressure holds J = 1 only on average over each vertex's patch, so an element can lose "
+            "volume until it inverts, at any step size; formulation.pressure \"P1+P0\" holds every element's "
+            "volume (or give the material a volumetric penalty)";
+  return text;
+}
 
 std::string InversionRecord::record(const TetMesh& mesh, const std::string& why) {
   const int e = inverted_element(why);

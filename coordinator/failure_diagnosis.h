@@ -11,6 +11,7 @@
 #include "common/mesh/TetMesh.h"
 
 #include <string>
+#include <vector>
 
 namespace fe2 {
 
@@ -21,6 +22,17 @@ int inverted_element(const std::string& why);
 /// Elements below either bound are called badly shaped: a Jacobian ratio below 0.25 (the
 /// curved map's det J varies fourfold inside the element) or a shape η below 0.1 (a sliver).
 bool badly_shaped(double jacobian_ratio, double shape);
+
+/// A failed run's committed state, element by element: the volume ratio J̄_e = ∫_e det F̄ / |e|
+/// of each element (−1 off the wall) and whether the pressure is continuous P1 only (a
+/// Lagrange multiplier or a perturbed one, no constant per element). With P1 the
+/// constraint J = 1 holds only against the P1 test functions, so an element may gain or
+/// lose volume while its vertex patch keeps its own; under a large hydrostatic pressure
+/// such an element keeps shrinking until it inverts, whatever the step (the discrete
+/// pressure space is the cause, P1+P0 holds each element's volume). "" or a clause
+/// naming the element that lost most volume, its J̄_e and centroid, and the remedy, when
+/// some element's volume changed by more than 5 %.
+std::string volume_diagnosis(const TetMesh& mesh, const std::vector<double>& element_J, bool p1_pressure);
 
 /// The failures of one output step, in order.
 class InversionRecord {
