@@ -14,10 +14,13 @@
 //   converge         (i) the true residual (with P̄) of every field, each by its own
 //                    norm and tolerance [macro/field_residuals.h], and every unit's ‖r‖
 //   solve            (h) S̄ Δx = −R̃ on the coordinators (MUMPS)
-//   update           (j) x += Δx
+//   update           (j) x += Δx (newton.line_search: the next iteration's evaluation is
+//                    the trial; one the line search rejects is retracted to x + αΔx,
+//                    macro/LineSearch.h)
 // Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
-// NaN, inverted element, iteration cap) is rolled back and cut in half, up to
-// newton.max_cutbacks times; then the run stops, saying where and why.
+// NaN, inverted element, iteration cap) is rolled back and retried shorter by the load
+// stepper (LoadStepper.h: fixed halvings up to newton.max_cutbacks, or time.adaptive);
+// then the run stops, saying where and why (failure_diagnosis.h names the cause it can).
 #include "coordinator/LoadStepper.h"
 #include "coordinator/PointCoupling.h"
 #include "coordinator/PointEvaluator.h"
