@@ -248,6 +248,8 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     try {
       outcome = iterate(step, it, t_new, dt, first ? &du_D : nullptr, rec, stall, timing,
                         search.active() ? &search : nullptr);
+    } catch (const SingularMatrixError&) {
+      throw;  // the solve failed: no correction is left to shorten
     } catch (const NumericalError& e) {
       // A trial of the line search that inverts an element (or is non-finite) is a step
       // too long, not yet a failed step: shorten it, down to line_search_min_step.
