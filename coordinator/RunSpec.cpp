@@ -323,6 +323,9 @@ void read_newton(SpecNode n, RunSpec& spec) {
   per_field.finish();
   spec.micro_rtol = n.number("micro_rtol");
   spec.max_cutbacks = n.integer("max_cutbacks");
+  spec.load_steps.max_cutbacks = spec.max_cutbacks;
+  spec.line_search.backtracking = n.choice("line_search") == "backtracking";
+  spec.line_search.min_step = n.number("line_search_min_step");
   {
     SpecNode m = n.child("macro_solver");
     MacroSolverOptions& o = spec.macro_solver;
@@ -478,6 +481,10 @@ void read_time(SpecNode t, RunSpec& spec) {
   spec.steps_per_beat = t.integer("steps_per_beat");
   spec.periodic_tolerance = t.number("periodic_tolerance");
   spec.inflation_steps = t.integer("inflation_steps");
+  spec.load_steps.adaptive = t.boolean("adaptive");
+  spec.load_steps.target_iterations = t.integer("target_iterations");
+  if (t.has("max_dt")) spec.load_steps.max_dt = t.number("max_dt");
+  if (t.has("min_dt")) spec.load_steps.min_dt = t.number("min_dt");
   if (spec.beats > 0 && (t.has("t_end") || t.has("steps")))
     t.fail("beats", "either beats (with steps_per_beat) or t_end and steps, not both");
   t.finish();
@@ -593,6 +600,13 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
   read_activation_of(root, spec);
   read_newton(root.child("newton"), spec);
   read_models(root.child("models"), root.child("assign"), spec);
+  // A unit applies its own Newton update δw with the macro one; a shortened macro step
+  // would leave it out of step (LineSearch.h).
+  for (const auto& m : spec.models)
+    if (spec.line_search.backtracking && m.kind == PointModelSpec::Kind::fe2)
+      throw InputError(fmt::format("/newton/line_search: got \"backtracking\", which needs macro-law points only; "
+                                   "model '{}' has FE² units (use \"none\")",
+                                   m.name));
 
   read_dirichlet(root, spec);
   read_pressure(root, spec);

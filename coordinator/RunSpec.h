@@ -13,6 +13,8 @@
 #include "common/mesh/TetMesh.h"
 #include "common/spec/SpecNode.h"
 #include "coordinator/farm/FarmOptions.h"
+#include "coordinator/LoadStepper.h"
+#include "coordinator/macro/LineSearch.h"
 #include "coordinator/macro/MacroSolverOptions.h"
 #include "worker/MicroModel.h"
 #include "worker/point_models.h"
@@ -128,6 +130,8 @@ struct RunSpec {
   double rtol_of(const std::string& field) const;
   double micro_rtol = 0;          ///< each unit: ‖r‖ <= micro_rtol · r_ref
   int max_cutbacks = 0;
+  LoadStepOptions load_steps;     ///< time.adaptive and its bounds; max_cutbacks (coordinator/LoadStepper.h)
+  LineSearchOptions line_search;  ///< newton.line_search (coordinator/macro/LineSearch.h)
   MacroSolverOptions macro_solver;  ///< newton.macro_solver: when the macro factor is refreshed
 
   FarmOptions farm;

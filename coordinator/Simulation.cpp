@@ -1,5 +1,6 @@
 #include "coordinator/Simulation.h"
 
+#include "coordinator/failure_diagnosis.h"
 #include "coordinator/macro/CavityPressureTerm.h"
 #include "coordinator/macro/gather.h"
 
@@ -42,7 +43,8 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const proto:
       partition_(std::move(partition)),
       problem_(spec, group_, make_macro_system(spec, extension)),
       displacement_field_(problem_.system().field("displacement")),
-      coupling_(spec, points, group_, partition_.elements(), displacement_field_) {
+      coupling_(spec, points, group_, partition_.elements(), displacement_field_),
+      stepper_(spec.load_steps, spec.dt()) {
   FE2_CHECK(partition_.part() == group_.rank() && partition_.parts() == group_.size(),
             "coordinator {} of {} given part {} of {}", group_.rank(), group_.size(), partition_.part(),
             partition_.parts());
@@ -171,8 +173,9 @@ bool Simulation::StallGuard::stalled(int it, double measure, bool converged, boo
 
 // --- one Newton iteration (paper Fig. 5)
 
-bool Simulation::iterate(int step, int it, double t_new, double dt, const Eigen::VectorXd* lift, StepRecord& rec,
-                         StallGuard& stall, IterationTiming& timing) {
+Simulation::Outcome Simulation::iterate(int step, int it, double t_new, double dt, const Eigen::VectorXd* lift,
+                                        StepRecord& rec, StallGuard& stall, IterationTiming& timing,
+                                        LineSearch* search) {
   ScopedWallTimer entire(timing.entire);
   problem_.predict(dt);
   {
@@ -210,11 +213,18 @@ bool Simulation::iterate(int step, int it, double t_new, double dt, const Eigen:
                  "its tolerance); every unit refactors in the next iteration",
                  step, t_new, it, before, measure);
   }
-  if (!converged) {
+  if (converged) return Outcome::converged;
+  if (search && search->judge(measure) == LineSearch::Verdict::retry) {
+    spdlog::debug("step {} t={:.6g} it {}: line search rejects the trial (merit {:.3e}); next α = {:.3g}", step,
+                  t_new, it, measure, search->alpha());
+    return Outcome::rejected;
+  }
+  {
     ScopedWallTimer t(timing.solve);
     problem_.solve(it == 1 && !spec_.dynamic);
   }
-  return converged;
+  if (search) search->start(measure);
+  return Outcome::solved;
 }
 
 bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
@@ -226,17 +236,41 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
   rec.micro_residuals.clear();
   coupling_.force_refresh(false);
   StallGuard stall;
+  LineSearch search(spec_.line_search);
+  bool lifted = false;  // the correction being tried carries Δx_D
   for (int it = 1; it <= spec_.newton_max_iterations; ++it) {
+    if (stop_poll_ && stop_poll_()) throw StopRequested{};
     IterationTiming timing;
     timing.step = step;
     timing.iteration = it;
     const bool first = it == 1 && has_du_D;
-    const bool converged = iterate(step, it, t_new, dt, first ? &du_D : nullptr, rec, stall, timing);
+    Outcome outcome;
+    try {
+      outcome = iterate(step, it, t_new, dt, first ? &du_D : nullptr, rec, stall, timing,
+                        search.active() ? &search : nullptr);
+    } catch (const SingularMatrixError&) {
+      throw;  // the solve failed: no correction is left to shorten
+    } catch (const NumericalError& e) {
+      // A trial of the line search that inverts an element (or is non-finite) is a step
+      // too long, not yet a failed step: shorten it, down to line_search_min_step.
+      if (!search.active() || it == 1 || search.judge(std::numeric_limits<double>::infinity()) ==
+                                              LineSearch::Verdict::give_up)
+        throw;
+      spdlog::debug("step {} t={:.6g} it {}: line search: {}; next α = {:.3g}", step, t_new, it, e.what(),
+                    search.alpha());
+      outcome = Outcome::rejected;
+    }
     if (on_iteration_) on_iteration_(timing);
-    if (converged) {
+    if (outcome == Outcome::converged) {
       rec.iterations += it;
+      rec.line_search_backtracks += search.backtracks();
       return true;
     }
+    if (outcome == Outcome::rejected) {
+      problem_.retract(search.alpha(), lifted, du_D);
+      continue;
+    }
+    lifted = first;
     try {
       problem_.update(first, du_D);
     } catch (const NumericalError& e) {
@@ -244,6 +278,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     }
   }
   rec.iterations += spec_.newton_max_iterations;
+  rec.line_search_backtracks += search.backtracks();
   return false;
 }
 
@@ -260,14 +295,15 @@ void Simulation::rollback() {
 // --- time stepping
 
 std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
-  const double dt_nominal = spec_.dt();
-  int cut = 0;
+  stepper_.begin_step();
+  InversionRecord inversions;
   while (problem_.committed_time() < t_target - 1e-12 * spec_.t_end) {
     const double t_n = problem_.committed_time();
-    double t_new = std::min(t_n + dt_nominal / std::ldexp(1.0, cut), t_target);
+    double t_new = stepper_.next_time(t_n, t_target);
     // The inflation ends, and the beat starts, at t = 0 exactly (not at a rounding of it).
     if (t_target == 0.0 && -t_new < 1e-12 * spec_.t_end) t_new = 0.0;
     std::string why;
+    const int iterations_before = rec.iterations;
     try {
       if (newton(step, t_new, t_new - t_n, rec)) {
         // The units' fields of an output step, from the converged state before it
@@ -275,6 +311,7 @@ std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
         if (!spec_.output_units.empty() && is_output_step(step) && t_new >= t_target - 1e-12 * spec_.t_end)
           unit_fields_ = coupling_.unit_fields(spec_.output_units, step + 1);
         commit(t_new, t_new - t_n);
+        stepper_.converged(rec.iterations - iterations_before);
         continue;
       }
       std::string last;
@@ -289,15 +326,34 @@ std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
       why = e.what();
     } catch (const NumericalError& e) {
       why = e.what();
+    } catch (const StopRequested&) {
+      rollback();
+      stopped_in_step_ = true;
+      return "";
     }
     rollback();
-    if (++cut > spec_.max_cutbacks)
-      return fmt::format("step {} (t = {:.6g} → {:.6g}) failed after {} cutbacks: {}", step, t_n, t_new,
-                         spec_.max_cutbacks, why);
+    // An element that inverts again and again as the step shrinks: say whether it is the mesh.
+    const std::string diagnosis = inversions.record(spec_.mesh, why);
+    if (!stepper_.failed())
+      return fmt::format("step {} (t = {:.6g} → {:.6g}) failed {}: {}{}{}", step, t_n, t_new,
+                         stepper_.give_up_reason(), why, diagnosis, volume_diagnosis());
     ++rec.cutbacks;
-    spdlog::warn("step {}: {}; cutting the step to dt = {:.4g}", step, why, dt_nominal / std::ldexp(1.0, cut));
+    spdlog::warn("step {}: {}; cutting the step to dt = {:.4g}", step, why, stepper_.dt());
   }
   return "";
+}
+
+std::string Simulation::volume_diagnosis() const {
+  if (!spec_.formulation.mixed) return "";
+  // J̄_e of the committed state, the volume-weighted mean of det F̄ over each element's points.
+  std::vector<double> J(spec_.mesh.num_tets(), 0.0), volume(spec_.mesh.num_tets(), 0.0);
+  for (int k = 0; k < points().size(); ++k) {
+    const MacroPoint& p = points()[k];
+    J[p.element] += p.volume * (Mat3::Identity() + as_mat3(displacement_gradient(k))).determinant();
+    volume[p.element] += p.volume;
+  }
+  for (size_t e = 0; e < J.size(); ++e) J[e] = volume[e] > 0.0 ? J[e] / volume[e] : -1.0;
+  return fe2::volume_diagnosis(spec_.mesh, J, !spec_.formulation.element_pressure);
 }
 
 bool Simulation::beat_is_periodic(RunResult& result) const {
@@ -333,6 +389,11 @@ RunResult Simulation::run(const StepHook& on_step, const IterationHook& on_itera
     const double t0 = wall_seconds();
     const double t_target = spec_.step_end_time(step);
     result.error = advance(step, t_target, rec);
+    if (stopped_in_step_) {  // a stop request inside the step: the committed state stands
+      result.stopped = true;
+      result.converged = true;
+      return result;
+    }
     if (!result.error.empty()) {
       result.history.push_back(rec);
       return result;

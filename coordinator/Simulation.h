@@ -14,10 +14,14 @@
 //   converge         (i) the true residual (with P̄) of every field, each by its own
 //                    norm and tolerance [macro/field_residuals.h], and every unit's ‖r‖
 //   solve            (h) S̄ Δx = −R̃ on the coordinators (MUMPS)
-//   update           (j) x += Δx
+//   update           (j) x += Δx (newton.line_search: the next iteration's evaluation is
+//                    the trial; one the line search rejects is retracted to x + αΔx,
+//                    macro/LineSearch.h)
 // Each phase is timed (IterationTiming, the traces). A step that fails (divergence,
-// NaN, inverted element, iteration cap) is rolled back and cut in half, up to
-// newton.max_cutbacks times; then the run stops, saying where and why.
+// NaN, inverted element, iteration cap) is rolled back and retried shorter by the load
+// stepper (LoadStepper.h: fixed halvings up to newton.max_cutbacks, or time.adaptive);
+// then the run stops, saying where and why (failure_diagnosis.h names the cause it can).
+#include "coordinator/LoadStepper.h"
 #include "coordinator/PointCoupling.h"
 #include "coordinator/PointEvaluator.h"
 #include "coordinator/macro/MacroProblem.h"
@@ -47,6 +51,7 @@ struct StepRecord {
   double time = 0.0;
   int iterations = 0;                 ///< Newton iterations of the accepted (sub)steps
   int cutbacks = 0;
+  int line_search_backtracks = 0;     ///< trials newton.line_search rejected
   /// Per macro field (table order): its residual norm per iteration (last substep).
   std::vector<FieldResidualHistory> residuals;
   std::vector<double> micro_residuals;///< max_k ‖r_k‖ / r_ref,k per iteration (last substep)
@@ -100,6 +105,11 @@ class Simulation {
   /// run() returns after the step in progress (or the one on_step reports), with
   /// `stopped` set: a batch system's signal, once a checkpoint is written.
   void request_stop() { stop_requested_ = true; }
+  /// A stop request polled before every Newton iteration (and so between cut-backs and
+  /// line-search trials): when it answers true inside a step, the step is rolled back to
+  /// the committed state and run() returns with `stopped` at once. Must answer alike on
+  /// every coordinator (reduce over them). @note Collective (it is called collectively).
+  void set_stop_poll(std::function<bool()> poll) { stop_poll_ = std::move(poll); }
 
   /// Checkpoints: the committed macro state (t, ū and its rates, p, each term's
   /// history), the same on every coordinator. Also drops the kept macro factor, so
@@ -170,10 +180,16 @@ class Simulation {
     /// Whether iteration `it` calls for it (`refreshed`: this one already refactored all).
     bool stalled(int it, double measure, bool converged, bool refreshed);
   };
-  /// One iteration (predict, evaluate points, assemble, converge, solve): true if
-  /// converged, else the correction is ready for update. @note Collective.
-  bool iterate(int step, int it, double t_new, double dt, const Eigen::VectorXd* lift, StepRecord& rec,
-               StallGuard& stall, IterationTiming& timing);
+  enum class Outcome {
+    converged,  ///< the iterate is the step's answer
+    solved,     ///< a new correction is ready for update
+    rejected,   ///< the line search rejects this trial: retract to a shorter one
+  };
+  /// One iteration (predict, evaluate points, assemble, converge, solve); `search` (null
+  /// without a line search) judges the iterate before a new correction is solved for.
+  /// @note Collective.
+  Outcome iterate(int step, int it, double t_new, double dt, const Eigen::VectorXd* lift, StepRecord& rec,
+                  StallGuard& stall, IterationTiming& timing, LineSearch* search);
   /// Residual norms of the assembled iteration, the same on every coordinator. @note Collective.
   Residual converge(double t_new);
   /// "displacement 1.2e-3, pressure 4.0e-9, micro 2.1e-10": for logs and errors.
@@ -182,9 +198,13 @@ class Simulation {
   void account_work(StepRecord& rec) const;
   /// max over the residuals of each one's ratio to its tolerance: converged iff ≤ 1.
   double convergence_measure(const Residual& r) const;
-  /// Steps from the committed state to t_target, halving on failure (newton.max_cutbacks);
-  /// returns "" or why it gave up (the state then rolled back). @note Collective.
+  /// Steps from the committed state to t_target in the sub-steps of the LoadStepper
+  /// (fixed: halving on failure, newton.max_cutbacks; or time.adaptive); returns "" or why
+  /// it gave up (the state then rolled back). @note Collective.
   std::string advance(int step, double t_target, StepRecord& rec);
+  /// Why a failing mixed run's elements may be the cause: failure_diagnosis.h's
+  /// volume_diagnosis of the committed state ("" if nothing stands out).
+  std::string volume_diagnosis() const;
   /// The step's observables: cavity volumes, probes, cavity pressures and flows, loads.
   void observe(StepRecord& rec) const;
   /// time.beats: records the last beat's EDV change; true when below the tolerance.
@@ -199,10 +219,15 @@ class Simulation {
   MacroProblem problem_;
   const Field& displacement_field_;
   PointCoupling coupling_;
+  LoadStepper stepper_;                ///< the sub-steps of each step (time.adaptive)
   CavityPressureTerm* cavity_term_ = nullptr;  ///< when a circulation is coupled
   IterationHook on_iteration_;
   std::vector<proto::UnitFields> unit_fields_;
   bool stop_requested_ = false;
+  std::function<bool()> stop_poll_;
+  /// Thrown by newton() when stop_poll_ says so; advance() rolls back and run() returns.
+  struct StopRequested {};
+  bool stopped_in_step_ = false;
 };
 
 }  // namespace fe2

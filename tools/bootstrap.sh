@@ -60,5 +60,6 @@ if [[ $mode == demo ]]; then
   echo "ParaView:  $out/displacement.pvd  (Warp By Vector 'displacement'; units at systole: $out/units/)"
 else
   cd build
-  ctest -j"$jobs" --output-on-failure --timeout 900
+  # Every label but "long" (tests of minutes each; ctest -L long runs them).
+  ctest -j"$jobs" --output-on-failure --timeout 900 -LE long
 fi

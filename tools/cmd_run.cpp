@@ -13,6 +13,7 @@
 #include "tools/commands.h"
 #include "tools/output_folder.h"
 #include "tools/memory_limit.h"
+#include "tools/run_plots.h"
 #include "tools/stop_signal.h"
 #include "tools/study_spec.h"
 #include "worker/blas_core.h"
@@ -335,6 +336,14 @@ int run(const RunOptions& o) {
     };
     if (o.restart.empty()) write_fields(0, 0.0);
     int stopped_by = 0;
+    bool stop_checkpointed = false;  // at the step boundary, by the step hook
+    // Before every Newton iteration: a signal on any coordinator stops all of them, even
+    // inside a step that keeps cutting back (its committed state is checkpointed below).
+    sim.set_stop_poll([&] {
+      const int signal = coords.allreduce_max(stop_signal());
+      if (signal != 0) stopped_by = signal;
+      return signal != 0;
+    });
     const RunResult result = sim.run(
         [&](const StepRecord& r) {
           const double elapsed = wall_seconds() - t0;
@@ -360,6 +369,7 @@ int run(const RunOptions& o) {
           }
           if (signal != 0) {
             stopped_by = signal;
+            stop_checkpointed = true;
             sim.request_stop();
           }
         },
@@ -378,22 +388,30 @@ int run(const RunOptions& o) {
           trace->iteration(t);
         },
         std::move(done));
+    if (result.stopped && !stop_checkpointed) {
+      // Stopped inside a step: the state rolled back to the last commit is what restarts.
+      const CheckpointWritten w =
+          write_checkpoint(checkpoint_path(o.out), spec, world.size(), sim, points, coords,
+                           output ? output->progress() : RunResult{}, trace ? trace->offsets() : TraceOffsets{});
+      spdlog::info("checkpoint of the committed state after step {} (the step in progress was abandoned): {} "
+                   "({}, {:.2f} s)",
+                   result.steps, w.path, format_bytes(static_cast<double>(w.bytes)), w.seconds);
+    }
     if (rank == 0) points.shutdown();
     if (output) output->write_summary(sim, result, wall_seconds() - t0);
     if (output && !spec.cavities.empty()) {
       // The pressure–volume curve as a picture; a missing matplotlib costs only the PNG.
-      const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_PLOT_SCRIPT, o.out);
-      if (std::system(cmd.c_str()) != 0)
-        spdlog::warn("no pv_curve.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+      if (const std::string w = run_plot_script(FE2_PV_PLOT_SCRIPT, o.out, "pv_curve.png"); !w.empty())
+        spdlog::warn("{}", w);
     }
     if (output && spec.circulation && result.steps > 0) {
-      const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' > /dev/null 2>&1", FE2_PV_LOOP_SCRIPT, o.out);
-      if (std::system(cmd.c_str()) != 0)
-        spdlog::warn("no pv_loop.png, pv_time.png: '{}' failed (it needs Debian's python3-matplotlib)", cmd);
+      if (const std::string w = run_plot_script(FE2_PV_LOOP_SCRIPT, o.out, "pv_loop.png, pv_time.png"); !w.empty())
+        spdlog::warn("{}", w);
     }
     if (result.stopped) {
-      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGUSR1 ? "SIGUSR1" : std::to_string(stopped_by),
-                   result.steps, result.history.back().time, checkpoint_path(o.out));
+      const char* name = stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGUSR1 ? "SIGUSR1" : stopped_by == SIGINT ? "SIGINT" : nullptr;
+      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", name ? name : std::to_string(stopped_by),
+                   result.steps, result.history.empty() ? 0.0 : result.history.back().time, checkpoint_path(o.out));
       spdlog::info("continue with: fe2heart run {} --out {} --restart {}", o.spec, o.out, o.out);
       return 0;
     }

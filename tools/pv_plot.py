@@ -3,7 +3,9 @@
 
 For every cavity of the spec, the volume after each step (history[*].cavity_volumes)
 against the pressure of the loads on the cavity's surface (history[*].load_pressures),
-starting from the undeformed volume at zero pressure. Needs Debian's python3-matplotlib.
+starting from the undeformed volume at zero pressure. A run that stopped early ends its
+history with the failed step, which has no volumes: the curve stops at the last
+converged step. Needs Debian's python3-matplotlib.
 
     /usr/bin/python3 tools/pv_plot.py RUN_DIR [--out FILE]
 """
@@ -38,6 +40,8 @@ def main():
         V = [c["reference_volume"]]
         p = [0.0]
         for h in s["history"]:
+            if name not in h.get("cavity_volumes", {}):
+                continue  # the failed step of a run that stopped early
             V.append(h["cavity_volumes"][name])
             p.append(sum(h["load_pressures"][k] for k in loads) if loads else 0.0)
         ax.plot(V, [x / 1000.0 for x in p], "o-", ms=3, label=f"{name} ({c['surface']})")

@@ -1,12 +1,13 @@
 #pragma once
-// A batch system's request to stop a run (SIGTERM, SIGUSR1): `fe2heart run` writes a
-// checkpoint at the next step boundary and exits 0. The handler is installed before
+// A request to stop a run (a batch system's SIGTERM or SIGUSR1, a user's Ctrl-C,
+// SIGINT): `fe2heart run` stops within one Newton iteration, even in the middle of a
+// step that keeps cutting back, writes a checkpoint of the committed state and exits 0. The handler is installed before
 // MPI_Init, so a rank that is still starting up (reading its spec, building units) when
 // the request comes is not killed by it: it records the request like every other rank.
 
 namespace fe2::cli {
 
-/// From now on SIGTERM and SIGUSR1 are recorded, not acted on.
+/// From now on SIGTERM, SIGINT and SIGUSR1 are recorded, not acted on.
 void catch_stop_signals();
 /// The last stop signal recorded, or 0.
 int stop_signal();

@@ -339,7 +339,19 @@ Schema make_run_spec_schema() {
                          "steps of the beat's size before t = 0 that inflate the resting wall to the circulation's "
                          "filling pressure (each cavity's pressure ramped to the one upstream of its inflow valve), "
                          "so the first beat starts at end-diastole; needs a circulation; 0: the beat starts from "
-                         "the unloaded wall")}})},
+                         "the unloaded wall")},
+                {"adaptive",
+                 boolean(false, "sub-steps sized by Newton's behaviour between the output times t_end·k/steps: "
+                                "x1.5 after a sub-step within target_iterations, smaller after a slower one, "
+                                "halved on failure down to min_dt, carried from step to step (false: each step "
+                                "whole, halved on failure up to newton.max_cutbacks times)")},
+                {"target_iterations",
+                 integer(8, Range::closed(1, 1000), "adaptive: Newton iterations a sub-step should take")},
+                {"max_dt", optional(number(nullopt, Range::positive(),
+                                           "adaptive: largest sub-step (default t_end/steps)"))},
+                {"min_dt", optional(number(nullopt, Range::positive(),
+                                           "adaptive: a run whose failed sub-step would be halved below this "
+                                           "stops (default t_end/steps/1024)"))}})},
        {"newton",
         object(false, "Newton–Raphson",
                {{"max_iterations", integer(20, Range::closed(1, 1000),
@@ -351,7 +363,16 @@ Schema make_run_spec_schema() {
                      "norm summary.json logs for it; a field not named here takes rtol",
                      "field", number(nullopt, kOpenUnit, "the field's residual norm to reach"))},
                 {"micro_rtol", number(1e-8, kOpenUnit, "unit residual ‖r‖ / r_ref")},
-                {"max_cutbacks", integer(4, Range::closed(0, 30), "step halvings before giving up")},
+                {"max_cutbacks", integer(4, Range::closed(0, 30),
+                                         "step halvings before giving up (fixed steps; time.adaptive stops at time.min_dt)")},
+                {"line_search",
+                 choice("none", {"none", "backtracking"},
+                        "none: the full Newton correction; backtracking: Armijo backtracking on the "
+                        "residual (merit: the largest field residual over its tolerance), which shortens a "
+                        "correction that raises it or inverts an element")},
+                {"line_search_min_step", number(1.0 / 64, Range{0.0, 1.0, true, false},
+                                                "backtracking: the shortest fraction of a correction tried "
+                                                "before the iteration takes it anyway")},
                 {"macro_solver",
                  object(false, "when the macro factor is refreshed",
                         {{"refresh", choice("every_iteration", {"every_iteration", "adaptive"},

@@ -127,10 +127,20 @@ void MacroProblem::solve(bool quasi_static_first) {
 void MacroProblem::update(bool first, const Eigen::VectorXd& du_D) {
   if (!std::all_of(du_.begin(), du_.end(), [](double x) { return std::isfinite(x); }))
     throw NumericalError("non-finite macro correction Δx");
+  x_k_ = x_;
   for (int dof = 0; dof < system_.num_dofs(); ++dof)
     if (system_.column(dof) >= 0) x_[dof] += du_[system_.column(dof)];
   if (first) x_ += du_D;
   system_.constraints().distribute(x_);  // tied and following DOFs exactly at their master's value
+}
+
+void MacroProblem::retract(double alpha, bool first, const Eigen::VectorXd& du_D) {
+  FE2_CHECK(x_k_.size() == x_.size(), "MacroProblem::retract before update");
+  x_ = x_k_;
+  for (int dof = 0; dof < system_.num_dofs(); ++dof)
+    if (system_.column(dof) >= 0) x_[dof] += alpha * du_[system_.column(dof)];
+  if (first) x_ += du_D;
+  system_.constraints().distribute(x_);
 }
 
 void MacroProblem::commit(double t_new, double dt) {

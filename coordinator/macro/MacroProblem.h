@@ -59,6 +59,9 @@ class MacroProblem {
   void solve(bool quasi_static_first);
   /// (j) x += Δx (and Δx_D after the first iteration).
   void update(bool first, const Eigen::VectorXd& du_D);
+  /// A line search's shorter step: x = x_k + α Δx (and the whole Δx_D if `first`), from
+  /// the x_k and Δx of the last update().
+  void retract(double alpha, bool first, const Eigen::VectorXd& du_D);
 
   void commit(double t_new, double dt);
   void rollback();
@@ -84,6 +87,7 @@ class MacroProblem {
   std::unique_ptr<MacroAssembly> assembly_;
   // Current and committed (every DOF; v, a of the fields with a rate).
   Eigen::VectorXd x_, v_, a_, x_n_, v_n_, a_n_;
+  Eigen::VectorXd x_k_;                ///< x before the last update (retract)
   double t_n_ = 0.0;
 };
 

@@ -217,6 +217,7 @@ json step_entry(const RunSpec& spec, const StepRecord& h) {
                {"forced_refreshes", h.forced_refreshes},
                {"collective_refreshes", h.collective_refreshes},
                {"wall_seconds", h.wall_seconds}};
+  if (spec.line_search.backtracking) step["line_search_backtracks"] = h.line_search_backtracks;
   if (!h.cavity_volumes.empty()) {
     json cav = json::object();
     for (size_t c = 0; c < h.cavity_volumes.size(); ++c) cav[spec.cavities[c].first] = h.cavity_volumes[c];
