@@ -17,6 +17,20 @@ read_gmsh_tets. Lengths in mm.
 
   /usr/bin/python3 tools/meshes/biv_mesh.py configs/meshes/biv_coarse.msh --size 2.5 [--order 2]
 
+--scale multiplies every length (the ellipsoids and the base plane); --rv-wall sets the
+RV free wall's thickness (mm, after scaling) in place of the scaled 3 mm; --rv-cavity
+widens the RV endocardium about its centre; --curvature 0 sizes elements from --size
+alone. The human-sized heart of configs/biv-beat-fe2.json (LV endo 22.4/54.4 mm, LV wall
+9.6 mm, RV wall 4 mm; 204 tets) is
+
+  /usr/bin/python3 tools/meshes/biv_mesh.py configs/meshes/biv_human.msh --scale 3.2 \
+      --rv-wall 4 --rv-cavity 1.1 --size 36 --curvature 0 --order 2
+
+Gmsh's output differs between runs in the last digits of the curved nodes' coordinates
+(round-off in its optimizer); the shipped files are the ones the configs were measured on.
+At this coarseness Gmsh can fail ("PLC Error") or emit an inverted tet (fe2heart's reader
+names it) for neighbouring sizes: try another --size.
+
 Needs Debian's python3-gmsh (tools/bootstrap.sh installs it).
 """
 import argparse
@@ -30,6 +44,21 @@ LV_ENDO = (0.0, 7.0, 7.0, 17.0)
 LV_EPI = (0.0, 10.0, 10.0, 20.0)
 RV_ENDO = (4.0, 12.0, 10.0, 15.0)
 RV_EPI = (4.0, 15.0, 13.0, 18.0)
+
+
+def scale_geometry(scale, rv_wall, rv_cavity=1.0):
+    """Rescale the module's ellipsoids and base plane in place (classify() reads them).
+    rv_wall (mm, or None for the scaled default): RV epi semi-axes = RV endo's + rv_wall.
+    rv_cavity: multiplies the RV endo semi-axes (about the same centre) before the wall."""
+    global BASE_Z, LV_ENDO, LV_EPI, RV_ENDO, RV_EPI
+    BASE_Z *= scale
+    LV_ENDO, LV_EPI, RV_ENDO, RV_EPI = (tuple(scale * v for v in e) for e in (LV_ENDO, LV_EPI, RV_ENDO, RV_EPI))
+    if rv_cavity != 1.0:
+        RV_ENDO = (RV_ENDO[0],) + tuple(rv_cavity * a for a in RV_ENDO[1:])
+        if rv_wall is None:
+            rv_wall = 3.0 * scale
+    if rv_wall is not None:
+        RV_EPI = (RV_ENDO[0],) + tuple(a + rv_wall for a in RV_ENDO[1:])
 
 
 def level(e, p):
@@ -82,9 +111,24 @@ def main():
     parser.add_argument("output", help="the .msh file to write")
     parser.add_argument("--size", type=float, default=2.5, help="target element size in mm (default 2.5)")
     parser.add_argument("--order", type=int, choices=(1, 2), default=1, help="element order (default 1)")
+    parser.add_argument("--curvature", type=int, default=12,
+                        help="elements per 2π of surface curvature (default 12; 0: sizes from --size alone)")
+    parser.add_argument("--scale", type=float, default=1.0, help="multiplies every length (default 1)")
+    parser.add_argument("--rv-wall", type=float, help="RV free-wall thickness in mm (default: 3 mm x scale)")
+    parser.add_argument("--rv-cavity", type=float, default=1.0,
+                        help="multiplies the RV endocardium's semi-axes (default 1): a larger RV cavity")
     args = parser.parse_args()
     if not args.size > 0.0:
         sys.exit(f"biv_mesh.py: --size {args.size}: expected a size > 0 (mm)")
+    if args.curvature < 0:
+        sys.exit(f"biv_mesh.py: --curvature {args.curvature}: expected a count >= 0 (0: off)")
+    if not args.scale > 0.0:
+        sys.exit(f"biv_mesh.py: --scale {args.scale}: expected a factor > 0")
+    if args.rv_wall is not None and not args.rv_wall > 0.0:
+        sys.exit(f"biv_mesh.py: --rv-wall {args.rv_wall}: expected a thickness > 0 (mm)")
+    if not args.rv_cavity > 0.0:
+        sys.exit(f"biv_mesh.py: --rv-cavity {args.rv_cavity}: expected a factor > 0")
+    scale_geometry(args.scale, args.rv_wall, args.rv_cavity)
 
     gmsh.initialize(["biv_mesh.py"])
     try:
@@ -94,7 +138,10 @@ def main():
         volume = build_geometry()
         gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
         gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * args.size)
-        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 12)  # elements per 2π of curvature
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", args.curvature)  # elements per 2π of curvature
+        if args.curvature == 0:  # sizes from --size alone, not spread in from small boundary curves
+            gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+            gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
         gmsh.model.mesh.generate(3)
         if args.order == 2:
             # Curved edge nodes can fold a thin element (the septum) inside out: untangle
