@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <ostream>
 
 namespace fe2 {
 namespace {
@@ -40,6 +41,8 @@ struct BivGeometry {
     return {e.cx, e.ax + w, e.ay + w, e.az + w};
   }
 };
+
+void PrintTo(const BivGeometry& g, std::ostream* os) { *os << g.file; }  // test names
 
 /// Midpoint-rule volumes on a grid of 0.2 mm × scale of the wall and of the RV cavity,
 /// from the definition solid = (LV_epi ∪ RV_epi) − LV_endo − (RV_endo − LV_epi), z < base.
