@@ -1,0 +1,67 @@
+#pragma once
+// One tetrahedron of incompressible Newtonian blood in ALE form (paper §II-A): on the
+// current (moving) element, with the convective velocity c = v − v̂ (v̂ the mesh
+// velocity) and a_χ = ∂v/∂t|_χ + (c·∇)v,
+//
+//   momentum   ∫ w·ρ(∂v/∂t|_χ + (c·∇)v − f) + ∫ 2μ D(v) : ∇w − ∫ p div w = 0   (+ faces)
+//   mass       −∫ q div v = 0                       (the sign makes the Galerkin block
+//                                                    symmetric: K_pv = K_vpᵀ)
+//
+// Elements (FluidElementKind):
+//   taylor_hood      P2 velocity / P1 pressure on a quadratic mesh: inf–sup stable, no
+//                    stabilization (Galerkin).
+//   stabilized_p1p1  P1/P1 on a linear mesh with residual-based (SUPG/PSPG/LSIC) terms,
+//                    the stabilization of Tezduyar (1992) and Whiting & Jansen (2001) in
+//                    the notation of Bazilevs et al. (2007, CMAME 197:173), metric tensor
+//                    G = J⁻ᵀJ⁻¹ (∂ξ/∂x of the reference tet):
+//       τ_M = (C_t/Δt² + c·G c + C_I ν² G:G)^(−1/2)      C_t = 4, C_I = 36, ν = μ/ρ
+//       τ_C = 1/(τ_M tr G)
+//       r_M = ρ(∂v/∂t|_χ + (c·∇)v − f) + ∇p              (μΔv = 0 for P1)
+//     SUPG  + ∫ τ_M (c·∇w)·r_M      PSPG  − ∫ (τ_M/ρ) ∇q·r_M      LSIC  + ∫ ρ τ_C div w div v
+//
+// The tangent is consistent in v and p, the τ's dependence on c included (so Newton is
+// quadratic on convective flows). The mesh (x, v̂) is data here: the shape derivatives
+// (the tangent with respect to the mesh motion) belong to the coupled problem.
+//
+// Element unknowns, in this order: velocity node-major (3a + i over the element's n
+// nodes, TetMesh::element_nodes order), then the pressure at its 4 vertices.
+#include "common/tensor9.h"
+
+#include <Eigen/Dense>
+
+namespace fe2 {
+
+enum class FluidElementKind { taylor_hood, stabilized_p1p1 };
+
+struct NewtonianFluid {
+  double density = 0.0;    ///< ρ
+  double viscosity = 0.0;  ///< μ (dynamic)
+};
+
+/// The element's data at the new time: current geometry and the nodal fields.
+struct FluidElementState {
+  Eigen::Matrix3Xd x;        ///< current node positions (3 x n, n = 4 or 10)
+  Eigen::Matrix3Xd v;        ///< velocity at the nodes
+  Eigen::Matrix3Xd v_rate;   ///< ∂v/∂t|_χ at the nodes (the field's time scheme)
+  Eigen::Matrix3Xd w;        ///< mesh velocity v̂ at the nodes
+  Eigen::Vector4d p = Eigen::Vector4d::Zero();  ///< pressure at the vertices
+  double dv_rate_dv = 0.0;   ///< ∂(∂v/∂t)/∂v of the scheme (0: steady)
+  double dt = 0.0;           ///< the step, for τ_M (0: steady, no C_t/Δt² term)
+  Vec3 body_force = Vec3::Zero();  ///< f, per unit mass
+};
+
+/// Number of element unknowns: 3 per velocity node, 1 per vertex.
+inline int fluid_element_dofs(FluidElementKind kind) { return kind == FluidElementKind::taylor_hood ? 34 : 16; }
+
+/// The element residual R (fluid_element_dofs) and, if `K` is not null, its tangent
+/// ∂R/∂(v, p). Throws fe2::NumericalError on an inverted or degenerate element.
+void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, const FluidElementState& s,
+                           Eigen::VectorXd& R, Eigen::MatrixXd* K);
+
+/// τ_M and τ_C of the stabilized element at convective velocity c (see above).
+struct StabilizationParameters {
+  double tau_m = 0.0, tau_c = 0.0;
+};
+StabilizationParameters stabilization_parameters(const Mat3& G, const Vec3& c, double nu, double dt);
+
+}  // namespace fe2
