@@ -36,6 +36,7 @@ enum class TimeScheme {
   none,           ///< no rate: pressures, multipliers, a quasi-static displacement
   newmark,        ///< second order in time: Newmark-β (β, γ of the spec)
   backward_euler, ///< first order in time: v = (x − x_n)/Δt
+  bdf2,           ///< first order in time, BDF2: v from x, x_n, x_{n−1} (second-order accurate)
 };
 
 /// How the convergence test measures a field's residual R (on its free equations).

@@ -18,7 +18,7 @@ MacroProblem::MacroProblem(const RunSpec& spec, const proto::Group& group, Macro
   const int n = system_.num_dofs();
   x_ = v_ = a_ = Eigen::VectorXd::Zero(n);
   system_.constraints().distribute(x_);  // ties with an offset hold from the start
-  x_n_ = x_;
+  x_n_ = x_nm1_ = x_;
   v_n_ = v_;
   a_n_ = a_;
   t_n_ = spec.t_start;
@@ -44,12 +44,12 @@ Eigen::VectorXd MacroProblem::prescribed_increment(double t_new) const {
 }
 
 void MacroProblem::predict(double dt) {
-  for (const Field& f : system_.fields()) time_integration_.rates(f, dt, x_, x_n_, v_n_, a_n_, v_, a_);
+  for (const Field& f : system_.fields()) time_integration_.rates(f, dt, x_, x_n_, v_n_, a_n_, x_nm1_, dt_n_, v_, a_);
 }
 
 MacroState MacroProblem::state(double t_new, double dt) const {
   MacroState s{x_, v_, a_, t_new, dt, {}};
-  for (const Field& f : system_.fields()) s.rates.push_back(time_integration_.coefficients(f, dt));
+  for (const Field& f : system_.fields()) s.rates.push_back(time_integration_.coefficients(f, dt, dt_n_));
   return s;
 }
 
@@ -146,6 +146,8 @@ void MacroProblem::retract(double alpha, bool first, const Eigen::VectorXd& du_D
 void MacroProblem::commit(double t_new, double dt) {
   const MacroState s = state(t_new, dt);
   for (auto& term : terms_) term->commit(s);
+  x_nm1_ = x_n_;
+  dt_n_ = dt;
   x_n_ = x_;
   v_n_ = v_;
   a_n_ = a_;
@@ -164,6 +166,8 @@ void MacroProblem::save(ByteWriter& w) const {
   w.put_array(x_n_.data(), static_cast<size_t>(x_n_.size()));
   w.put_array(v_n_.data(), static_cast<size_t>(v_n_.size()));
   w.put_array(a_n_.data(), static_cast<size_t>(a_n_.size()));
+  w.put_array(x_nm1_.data(), static_cast<size_t>(x_nm1_.size()));
+  w.put(dt_n_);
   w.put<uint64_t>(terms_.size());
   for (const auto& term : terms_) {
     w.put_string(term->name());
@@ -176,6 +180,8 @@ void MacroProblem::restore(ByteReader& r) {
   r.get_array_into(x_n_.data(), static_cast<size_t>(x_n_.size()));
   r.get_array_into(v_n_.data(), static_cast<size_t>(v_n_.size()));
   r.get_array_into(a_n_.data(), static_cast<size_t>(a_n_.size()));
+  r.get_array_into(x_nm1_.data(), static_cast<size_t>(x_nm1_.size()));
+  dt_n_ = r.get<double>();
   const auto terms = r.get<uint64_t>();
   if (terms != terms_.size())
     throw InputError(fmt::format("{}: {} macro terms where this run has {}", r.what(), terms, terms_.size()));

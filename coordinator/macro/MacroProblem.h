@@ -87,6 +87,8 @@ class MacroProblem {
   std::unique_ptr<MacroAssembly> assembly_;
   // Current and committed (every DOF; v, a of the fields with a rate).
   Eigen::VectorXd x_, v_, a_, x_n_, v_n_, a_n_;
+  Eigen::VectorXd x_nm1_;              ///< committed x of the step before (BDF2)
+  double dt_n_ = 0.0;                  ///< the last committed step (0: none yet)
   Eigen::VectorXd x_k_;                ///< x before the last update (retract)
   double t_n_ = 0.0;
 };

@@ -129,7 +129,7 @@ TEST(TimeIntegration, EachFieldAdvancesByItsOwnScheme) {
   x_n << 0.5, 1, 2, 3, 1, 1;
   v_n << 1, -1, 2, 0, 7, 7;
   a_n << 3, 1, -2, 1, 7, 7;
-  for (const Field& f : t) ti.rates(f, dt, x, x_n, v_n, a_n, v, a);
+  for (const Field& f : t) ti.rates(f, dt, x, x_n, v_n, a_n, x_n, 0.0, v, a);
   for (int k = 0; k < 2; ++k) {  // Newmark-β
     const double ak = (x[k] - x_n[k] - dt * v_n[k]) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n[k];
     EXPECT_NEAR(a[k], ak, 1e-9 * std::abs(ak));
@@ -141,10 +141,37 @@ TEST(TimeIntegration, EachFieldAdvancesByItsOwnScheme) {
   }
   EXPECT_EQ(v[4], 0.0);  // no rate
   EXPECT_EQ(a[5], 0.0);
-  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt).da_dx, 1.0 / (beta * dt * dt));
-  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt).dv_dx, gamma / (beta * dt));
-  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("first"), dt).dv_dx, 1.0 / dt);
-  EXPECT_EQ(ti.coefficients(t.at("none"), dt).dv_dx, 0.0);
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt, 0.0).da_dx, 1.0 / (beta * dt * dt));
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("second"), dt, 0.0).dv_dx, gamma / (beta * dt));
+  EXPECT_DOUBLE_EQ(ti.coefficients(t.at("first"), dt, 0.0).dv_dx, 1.0 / dt);
+  EXPECT_EQ(ti.coefficients(t.at("none"), dt, 0.0).dv_dx, 0.0);
+}
+
+// BDF2 at a varying step is exact on quadratics in time: x = t² gives v = 2t whatever
+// Δt_{n−1} and Δt; its first step (no history) is backward Euler.
+TEST(TimeIntegration, Bdf2IsExactOnQuadraticsAcrossAStepChange) {
+  const TetMesh m = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {1, 1, 1});
+  FieldTable t;
+  t.add({"fluid", 1, FieldSpace::global, {}, 1, TimeScheme::bdf2, ResidualNorm::relative_to_load, 1e-8});
+  t.number(m);
+  const TimeIntegration ti(0.25, 0.5);
+  const Field& f = t.at("fluid");
+  const double t0 = 0.3, t1 = 0.5, t2 = 0.56;  // Δt_{n−1} = 0.2, Δt = 0.06 (a cut-back)
+  Eigen::VectorXd x(1), x_n(1), x_nm1(1), zero = Eigen::VectorXd::Zero(1), v(1), a(1);
+  x << t2 * t2;
+  x_n << t1 * t1;
+  x_nm1 << t0 * t0;
+  ti.rates(f, t2 - t1, x, x_n, zero, zero, x_nm1, t1 - t0, v, a);
+  EXPECT_NEAR(v[0], 2 * t2, 1e-13);
+  // ∂v/∂x is the weight of x, so a term's tangent is consistent with the rate.
+  const double c = ti.coefficients(f, t2 - t1, t1 - t0).dv_dx;
+  Eigen::VectorXd v2(1), x2 = x;
+  x2[0] += 1e-3;
+  ti.rates(f, t2 - t1, x2, x_n, zero, zero, x_nm1, t1 - t0, v2, a);
+  EXPECT_NEAR((v2[0] - v[0]) / 1e-3, c, 1e-9 * c);
+  ti.rates(f, t2 - t1, x, x_n, zero, zero, x_nm1, 0.0, v, a);  // first step
+  EXPECT_DOUBLE_EQ(v[0], (x[0] - x_n[0]) / (t2 - t1));
+  EXPECT_DOUBLE_EQ(ti.coefficients(f, t2 - t1, 0.0).dv_dx, 1.0 / (t2 - t1));
 }
 
 /// A test-only field: c ∂T/∂t − ∇·∇T = s on the elements of its region, P1/P2 Galerkin:

@@ -1,0 +1,176 @@
+#include "coordinator/macro/FluidBoundaryTerms.h"
+
+#include "common/fem/vertex_volumes.h"
+#include "common/fluid/fluid_boundary.h"
+#include "coordinator/macro/gather.h"
+
+#include <algorithm>
+
+namespace fe2 {
+
+namespace {
+
+/// The partition's triangles of the face sets that bound a fluid element (a set may
+/// reach past the fluid, e.g. a box face through wall and fluid).
+std::vector<FluidFace> owned_faces_of(const TetMesh& mesh, const MacroPartition& partition,
+                                      const std::vector<std::string>& sets, const std::vector<int>& regions) {
+  std::vector<FluidFace> faces;
+  for (size_t k = 0; k < sets.size(); ++k) {
+    const auto tris = partition.owned_faces(mesh, mesh.faces.at(sets[k]));
+    const std::vector<int> tets = face_elements(mesh, tris);
+    for (size_t t = 0; t < tris.size(); ++t)
+      if (std::find(regions.begin(), regions.end(), mesh.region[tets[t]]) != regions.end())
+        faces.push_back({mesh.face_nodes(tris[t]), static_cast<int>(k)});
+  }
+  return faces;
+}
+
+template <class B>
+std::vector<std::string> set_names(const std::vector<B>& boundaries) {
+  std::vector<std::string> names;
+  for (const B& b : boundaries) names.push_back(b.set);
+  return names;
+}
+
+}  // namespace
+
+void fluid_face_geometry(const TetMesh& mesh, const Field* d, const std::vector<int>& nodes, const MacroState& s,
+                         Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& w) {
+  const int m = static_cast<int>(nodes.size());
+  x.resize(3, m);
+  w = Eigen::Matrix3Xd::Zero(3, m);
+  for (int a = 0; a < m; ++a) {
+    x.col(a) = mesh.nodes[nodes[a]];
+    if (d && d->has_node(nodes[a])) {
+      x.col(a) += s.x.segment<3>(d->node_dof(nodes[a]));
+      w.col(a) = s.v.segment<3>(d->node_dof(nodes[a]));
+    }
+  }
+}
+
+// --- open (pressure) boundaries
+
+OpenBoundaryTerm::OpenBoundaryTerm(const TetMesh& mesh, const MacroPartition& partition,
+                                   const std::vector<int>& regions, std::vector<Boundary> boundaries, double density)
+    : mesh_(mesh), boundaries_(std::move(boundaries)), density_(density),
+      faces_(owned_faces_of(mesh, partition, set_names(boundaries_), regions)) {}
+
+void OpenBoundaryTerm::declare(MacroSystem& system) {
+  v_ = &system.field("fluid_velocity");
+  d_ = system.fields().find("mesh_displacement");
+  for (const FluidFace& f : faces_) {
+    dofs_.push_back(v_->node_dofs(f.nodes));
+    local_.push_back(boundaries_[f.boundary].backflow > 0.0 ? system.declare_local(dofs_.back()) : -1);
+  }
+}
+
+void OpenBoundaryTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  const int order = mesh_.order();
+  Eigen::Matrix3Xd x, w;
+  Eigen::VectorXd R;
+  Eigen::MatrixXd K;
+  for (size_t k = 0; k < faces_.size(); ++k) {
+    const Boundary& b = boundaries_[faces_[k].boundary];
+    fluid_face_geometry(mesh_, d_, faces_[k].nodes, state, x, w);
+    // t = −P n: f_ext,a = −P ∫ N_a n da.
+    const Eigen::Matrix3Xd S = face_normal_integrals(order, x);
+    out.add_external(dofs_[k], -b.pressure(state.time) * Eigen::Map<const Eigen::VectorXd>(S.data(), S.size()));
+    if (local_[k] < 0) continue;
+    const Eigen::VectorXd v = gather(state.x, dofs_[k]);
+    backflow_face(order, density_, b.backflow, x, Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, v.size() / 3), w, R,
+                  &K);
+    out.add_internal(dofs_[k], R);
+    out.add_tangent(local_[k], K);
+  }
+}
+
+// --- flux constraints
+
+FluxConstraintTerm::FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition,
+                                       const std::vector<int>& regions, std::vector<Boundary> boundaries)
+    : mesh_(mesh), owns_globals_(partition.owns_globals()), boundaries_(std::move(boundaries)),
+      faces_(owned_faces_of(mesh, partition, set_names(boundaries_), regions)) {}
+
+void FluxConstraintTerm::declare(MacroSystem& system) {
+  v_ = &system.field("fluid_velocity");
+  d_ = system.fields().find("mesh_displacement");
+  lambda_ = &system.field("fluid_flux_pressure");
+  for (const FluidFace& f : faces_) {
+    std::vector<int> dofs = v_->node_dofs(f.nodes);
+    dofs.push_back(lambda_->global_dof(f.boundary));
+    dofs_.push_back(std::move(dofs));
+    local_.push_back(system.declare_local(dofs_.back()));
+  }
+}
+
+void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (field.id() != lambda_->id()) return;
+  for (const FluidFace& f : faces_) {
+    Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(f.nodes.size()));
+    for (size_t a = 0; a < f.nodes.size(); ++a) x.col(static_cast<Eigen::Index>(a)) = mesh_.nodes[f.nodes[a]];
+    scale[f.boundary] += face_normal_integrals(mesh_.order(), x).rowwise().sum().norm();
+  }
+}
+
+void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  Eigen::Matrix3Xd x, w;
+  for (size_t k = 0; k < faces_.size(); ++k) {
+    fluid_face_geometry(mesh_, d_, faces_[k].nodes, state, x, w);
+    const Eigen::Matrix3Xd S = face_normal_integrals(mesh_.order(), x);
+    const Eigen::Map<const Eigen::VectorXd> s(S.data(), S.size());
+    const int nv = static_cast<int>(S.size());
+    const Eigen::VectorXd v = gather(state.x, dofs_[k]).head(nv);
+    const double lambda = state.x[dofs_[k].back()];
+    Eigen::VectorXd R(nv + 1);
+    R.head(nv) = lambda * s;
+    R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
+    out.add_internal(dofs_[k], R);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nv + 1, nv + 1);
+    K.col(nv).head(nv) = s;
+    K.row(nv).head(nv) = s.transpose();
+    out.add_tangent(local_[k], K);
+  }
+  if (!owns_globals_) return;
+  for (size_t b = 0; b < boundaries_.size(); ++b)
+    out.add_external({lambda_->global_dof(static_cast<int>(b))},
+                     Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
+}
+
+// --- the pressure level of an enclosed fluid
+
+PressureLevelTerm::PressureLevelTerm(const TetMesh& mesh, std::vector<int> elements)
+    : mesh_(mesh), elements_(std::move(elements)) {}
+
+void PressureLevelTerm::declare(MacroSystem& system) {
+  const Field& p = system.field("fluid_pressure");
+  mu_ = &system.field("fluid_pressure_level");
+  for (int e : elements_) {
+    std::vector<int> dofs;
+    for (int a : mesh_.tets[e]) dofs.push_back(p.node_dof(a));
+    dofs.push_back(mu_->global_dof(0));
+    dofs_.push_back(std::move(dofs));
+    weights_.push_back(vertex_volumes(mesh_, e));
+    local_.push_back(system.declare_local(dofs_.back()));
+  }
+}
+
+void PressureLevelTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (field.id() != mu_->id()) return;
+  for (const Eigen::Vector4d& m : weights_) scale[0] += m.sum();
+}
+
+void PressureLevelTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  for (size_t k = 0; k < dofs_.size(); ++k) {
+    const Eigen::VectorXd z = gather(state.x, dofs_[k]);
+    Eigen::VectorXd R(5);
+    R.head<4>() = z[4] * weights_[k];
+    R[4] = weights_[k].dot(z.head<4>());
+    out.add_internal(dofs_[k], R);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(5, 5);
+    K.col(4).head<4>() = weights_[k];
+    K.row(4).head<4>() = weights_[k].transpose();
+    out.add_tangent(local_[k], K);
+  }
+}
+
+}  // namespace fe2

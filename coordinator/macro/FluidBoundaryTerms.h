@@ -1,0 +1,94 @@
+#pragma once
+// The fluid's boundary and level terms (fluid_scene.h), each on the partition's share:
+//   OpenBoundaryTerm     pressure faces: f_ext,a = −P(t) ∫N_a n da, and backflow
+//                        stabilization where β > 0 (common/fluid/fluid_boundary.h)
+//   FluxConstraintTerm   flux faces k: the multiplier λ_k acts as the traction −λ_k n,
+//                          R_v,a += λ_k ∫N_a n da,   R_λk = Σ_a (v_a − v̂_a)·∫N_a n da − Q_k(t)
+//                        (a symmetric saddle block; λ_k is the face's pressure)
+//   PressureLevelTerm    ∫ p dV = 0 by a multiplier μ: R_p,b += μ ∫N_b, R_μ = ∫ p dV
+// The current face geometry is x = X + d (mesh_displacement, when the scene has one).
+#include "common/mesh/TetMesh.h"
+#include "coordinator/macro/MacroPartition.h"
+#include "coordinator/macro/MacroTerm.h"
+
+#include <functional>
+
+namespace fe2 {
+
+/// One face triangle's nodes and where their velocity and mesh motion are.
+struct FluidFace {
+  std::vector<int> nodes;  ///< TetMesh::face_nodes
+  int boundary = 0;        ///< index of its boundary in the term's list
+};
+
+/// Reads the current positions and mesh velocities of `nodes` (x = X + d, v̂ = ḋ).
+void fluid_face_geometry(const TetMesh& mesh, const Field* d, const std::vector<int>& nodes, const MacroState& s,
+                         Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& w);
+
+class OpenBoundaryTerm final : public MacroTerm {
+ public:
+  struct Boundary {
+    std::string set;
+    std::function<double(double)> pressure;
+    double backflow = 0.0;
+  };
+  /// The partition's triangles of the boundaries' face sets that bound `regions`.
+  OpenBoundaryTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
+                   std::vector<Boundary> boundaries, double density);
+  std::string name() const override { return "fluid open boundary"; }
+  void declare(MacroSystem& system) override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+
+ private:
+  const TetMesh& mesh_;
+  std::vector<Boundary> boundaries_;
+  double density_;
+  std::vector<FluidFace> faces_;
+  const Field *v_ = nullptr, *d_ = nullptr;
+  std::vector<std::vector<int>> dofs_;
+  std::vector<int> local_;  ///< per face: its backflow matrix, or −1
+};
+
+class FluxConstraintTerm final : public MacroTerm {
+ public:
+  struct Boundary {
+    std::string set;
+    std::function<double(double)> flux;
+  };
+  FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
+                     std::vector<Boundary> boundaries);
+  std::string name() const override { return "fluid flux constraint"; }
+  void declare(MacroSystem& system) override;
+  /// The face areas (reference): R_λ's scale, so its measure is a mean normal velocity.
+  void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+
+ private:
+  const TetMesh& mesh_;
+  bool owns_globals_;
+  std::vector<Boundary> boundaries_;
+  std::vector<FluidFace> faces_;
+  const Field *v_ = nullptr, *d_ = nullptr, *lambda_ = nullptr;
+  std::vector<std::vector<int>> dofs_;  ///< per face: velocity DOFs, then λ
+  std::vector<int> local_;
+};
+
+class PressureLevelTerm final : public MacroTerm {
+ public:
+  PressureLevelTerm(const TetMesh& mesh, std::vector<int> elements);
+  std::string name() const override { return "fluid pressure level"; }
+  void declare(MacroSystem& system) override;
+  /// The fluid's volume: the measure is the mean pressure.
+  void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+
+ private:
+  const TetMesh& mesh_;
+  std::vector<int> elements_;
+  const Field *mu_ = nullptr;
+  std::vector<std::vector<int>> dofs_;  ///< per element: its 4 pressure DOFs, then μ
+  std::vector<Eigen::Vector4d> weights_;
+  std::vector<int> local_;
+};
+
+}  // namespace fe2

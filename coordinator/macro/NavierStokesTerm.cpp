@@ -1,0 +1,73 @@
+#include "coordinator/macro/NavierStokesTerm.h"
+
+#include "common/error.h"
+#include "common/fem/vertex_volumes.h"
+
+namespace fe2 {
+
+NavierStokesTerm::NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind,
+                                   NewtonianFluid fluid, Vec3 body_force)
+    : mesh_(mesh), elements_(std::move(elements)), kind_(kind), fluid_(fluid), body_force_(body_force) {}
+
+void NavierStokesTerm::declare(MacroSystem& system) {
+  v_ = &system.field("fluid_velocity");
+  p_ = &system.field("fluid_pressure");
+  d_ = system.fields().find("mesh_displacement");
+  for (int e : elements_) {
+    nodes_.push_back(mesh_.element_nodes(e));
+    std::vector<int> dofs = v_->node_dofs(nodes_.back());
+    const std::vector<int> vertices(mesh_.tets[e].begin(), mesh_.tets[e].end());
+    const std::vector<int> p = p_->node_dofs(vertices);
+    dofs.insert(dofs.end(), p.begin(), p.end());
+    dofs_.push_back(std::move(dofs));
+    local_.push_back(system.declare_local(dofs_.back()));
+  }
+}
+
+void NavierStokesTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (field.id() != p_->id()) return;
+  for (size_t k = 0; k < elements_.size(); ++k) {
+    const Eigen::Vector4d m = vertex_volumes(mesh_, elements_[k]);
+    for (int b = 0; b < 4; ++b) scale[dofs_[k][dofs_[k].size() - 4 + b] - field.offset()] += m[b];
+  }
+}
+
+void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  const double dv_rate_dv = state.rate(*v_).dv_dx;
+  FluidElementState s;
+  s.dv_rate_dv = dv_rate_dv;
+  s.dt = dv_rate_dv > 0.0 ? state.dt : 0.0;  // steady: no transient term in τ_M
+  s.body_force = body_force_;
+  Eigen::VectorXd R;
+  Eigen::MatrixXd K;
+  for (size_t k = 0; k < elements_.size(); ++k) {
+    const std::vector<int>& nodes = nodes_[k];
+    const int n = static_cast<int>(nodes.size());
+    s.x.resize(3, n);
+    s.v.resize(3, n);
+    s.v_rate.resize(3, n);
+    s.w.resize(3, n);
+    for (int a = 0; a < n; ++a) {
+      const int dof = v_->node_dof(nodes[a]);
+      s.v.col(a) = state.x.segment<3>(dof);
+      s.v_rate.col(a) = state.v.segment<3>(dof);
+      s.x.col(a) = mesh_.nodes[nodes[a]];
+      s.w.col(a).setZero();
+      if (d_ && d_->has_node(nodes[a])) {
+        const int m = d_->node_dof(nodes[a]);
+        s.x.col(a) += state.x.segment<3>(m);
+        s.w.col(a) = state.v.segment<3>(m);
+      }
+    }
+    for (int b = 0; b < 4; ++b) s.p[b] = state.x[dofs_[k][3 * n + b]];
+    try {
+      navier_stokes_element(kind_, fluid_, s, R, &K);
+    } catch (const NumericalError& e) {
+      throw NumericalError(fmt::format("{} (element {})", e.what(), elements_[k]));
+    }
+    out.add_internal(dofs_[k], R);
+    out.add_tangent(local_[k], K);
+  }
+}
+
+}  // namespace fe2

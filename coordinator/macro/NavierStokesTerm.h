@@ -1,0 +1,33 @@
+#pragma once
+// The fluid's volume term: common/fluid/navier_stokes_element.h on every fluid element
+// of the partition, on the current ALE geometry x = X + d (d the mesh_displacement field
+// when the scene has one, else 0) with the mesh velocity v̂ = ḋ, and the field's rate
+// ∂v/∂t|_χ from its time scheme.
+#include "common/fluid/navier_stokes_element.h"
+#include "common/mesh/TetMesh.h"
+#include "coordinator/macro/MacroTerm.h"
+
+namespace fe2 {
+
+class NavierStokesTerm final : public MacroTerm {
+ public:
+  NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, NewtonianFluid fluid,
+                   Vec3 body_force);
+  std::string name() const override { return "navier-stokes"; }
+  void declare(MacroSystem& system) override;
+  /// ∫ N_p dV per pressure DOF: the continuity residual's scale (a mean |div v|).
+  void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+
+ private:
+  const TetMesh& mesh_;
+  std::vector<int> elements_;
+  FluidElementKind kind_;
+  NewtonianFluid fluid_;
+  Vec3 body_force_;
+  const Field *v_ = nullptr, *p_ = nullptr, *d_ = nullptr;
+  std::vector<std::vector<int>> nodes_, dofs_;  ///< per element: its nodes; its v then p DOFs
+  std::vector<int> local_;
+};
+
+}  // namespace fe2

@@ -1,0 +1,89 @@
+#include "coordinator/macro/fluid_scene.h"
+
+#include "common/error.h"
+#include "coordinator/macro/FluidBoundaryTerms.h"
+#include "coordinator/macro/NavierStokesTerm.h"
+
+#include <algorithm>
+
+namespace fe2 {
+
+bool FluidSetup::enclosed() const {
+  return std::none_of(boundaries.begin(), boundaries.end(),
+                      [](const FluidBoundary& b) { return b.kind == FluidBoundary::Kind::pressure; });
+}
+
+std::vector<int> FluidSetup::flux_boundaries() const {
+  std::vector<int> k;
+  for (size_t b = 0; b < boundaries.size(); ++b)
+    if (boundaries[b].kind == FluidBoundary::Kind::flux) k.push_back(static_cast<int>(b));
+  return k;
+}
+
+namespace {
+
+void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
+  const int order = setup.element == FluidElementKind::taylor_hood ? 2 : 1;
+  if (mesh.order() != order)
+    throw InputError(fmt::format("fluid element {}: needs a {} mesh; this mesh is {}",
+                                 order == 2 ? "'taylor_hood' (P2/P1)" : "'p1p1' (stabilized P1/P1)",
+                                 order == 2 ? "quadratic" : "linear", mesh.order() == 2 ? "quadratic" : "linear"));
+  for (const FluidBoundary& b : setup.boundaries) {
+    const bool on_faces = b.kind != FluidBoundary::Kind::velocity;
+    if (on_faces ? !mesh.faces.count(b.set) : !mesh.node_sets.count(b.set))
+      throw InputError(fmt::format("fluid boundary: the mesh has no {} '{}'", on_faces ? "face set" : "node set", b.set));
+  }
+}
+
+}  // namespace
+
+MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
+  check_setup(mesh, setup);
+  MacroExtension ext;
+  ext.fields.push_back({"fluid_velocity", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
+                        ResidualNorm::relative_to_load, setup.rtol});
+  ext.fields.push_back({"fluid_pressure", 1, FieldSpace::vertex, setup.regions, 0, TimeScheme::none,
+                        ResidualNorm::scaled_l2, setup.rtol});
+  const int fluxes = static_cast<int>(setup.flux_boundaries().size());
+  if (fluxes > 0)
+    ext.fields.push_back({"fluid_flux_pressure", 1, FieldSpace::global, {}, fluxes, TimeScheme::none,
+                          ResidualNorm::scaled_max, setup.rtol});
+  if (setup.enclosed())
+    ext.fields.push_back({"fluid_pressure_level", 1, FieldSpace::global, {}, 1, TimeScheme::none,
+                          ResidualNorm::scaled_max, setup.rtol});
+  ext.constrain = [&mesh, setup](const FieldTable& fields, MacroConstraints& c) {
+    const Field& v = fields.at("fluid_velocity");
+    for (const FluidBoundary& b : setup.boundaries) {
+      if (b.kind != FluidBoundary::Kind::velocity) continue;
+      for (int a : mesh.node_sets.at(b.set)) {
+        if (!v.has_node(a)) continue;  // a set reaching past the fluid
+        const Vec3 X = mesh.nodes[a];
+        for (int i = 0; i < 3; ++i)
+          if (b.components[i]) c.prescribe(v.node_dof(a, i), c.add_value([g = b.velocity, X, i](double t) { return g(X, t)[i]; }));
+      }
+    }
+  };
+  return ext;
+}
+
+std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
+                                                    const MacroPartition& partition) {
+  std::vector<int> elements;
+  for (int e : partition.elements())
+    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
+      elements.push_back(e);
+  std::vector<std::unique_ptr<MacroTerm>> terms;
+  terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.fluid, setup.body_force));
+  std::vector<OpenBoundaryTerm::Boundary> open;
+  std::vector<FluxConstraintTerm::Boundary> flux;
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (b.kind == FluidBoundary::Kind::pressure) open.push_back({b.set, b.value, b.backflow});
+    if (b.kind == FluidBoundary::Kind::flux) flux.push_back({b.set, b.value});
+  }
+  if (!open.empty()) terms.push_back(std::make_unique<OpenBoundaryTerm>(mesh, partition, setup.regions, open, setup.fluid.density));
+  if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));
+  if (setup.enclosed()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
+  return terms;
+}
+
+}  // namespace fe2
