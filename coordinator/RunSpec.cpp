@@ -1,5 +1,7 @@
 #include "coordinator/RunSpec.h"
 
+#include "coordinator/fluid_spec.h"
+
 #include "common/activation/activation_spec.h"
 #include "common/circulation/circulation_factory.h"
 #include "common/hash.h"
@@ -134,20 +136,7 @@ int region_tag(const RunSpec& spec, const std::string& where, const std::string&
 
 /// mesh.wall_regions: tags or names, each once; absent: every region is wall.
 void read_wall_regions(SpecNode& m, RunSpec& spec) {
-  const json* v = m.declared_value("wall_regions");
-  if (!v) return;
-  if (!v->is_array() || v->empty()) m.fail("wall_regions", "a non-empty array of region tags or names");
-  for (size_t i = 0; i < v->size(); ++i) {
-    const json& r = (*v)[i];
-    const std::string where = fmt::format("{}/{}", m.key_path("wall_regions"), i);
-    if (!r.is_string() && !r.is_number_integer())
-      throw InputError(fmt::format("{}: got {}, expected a region tag (integer) or name (string)", where, r.dump()));
-    const int tag = region_tag(spec, where, r.is_string() ? r.get<std::string>() : r.dump());
-    if (std::find(spec.wall_regions.begin(), spec.wall_regions.end(), tag) != spec.wall_regions.end())
-      throw InputError(fmt::format("{}: got region {} twice, expected each wall region once", where, r.dump()));
-    spec.wall_regions.push_back(tag);
-  }
-  std::sort(spec.wall_regions.begin(), spec.wall_regions.end());
+  if (m.has("wall_regions")) spec.wall_regions = read_region_list(m, "wall_regions", spec);
 }
 
 /// A Dirichlet set holds the wall where it meets it (a base plane may cross a cavity
@@ -584,6 +573,24 @@ void check_field_tolerances(const RunSpec& spec) {
 
 }  // namespace
 
+std::vector<int> read_region_list(SpecNode& node, const std::string& key, const RunSpec& spec) {
+  const json* v = node.declared_value(key);
+  if (!v || !v->is_array() || v->empty()) node.fail(key, "a non-empty array of region tags or names");
+  std::vector<int> tags;
+  for (size_t i = 0; i < v->size(); ++i) {
+    const json& r = (*v)[i];
+    const std::string where = fmt::format("{}/{}", node.key_path(key), i);
+    if (!r.is_string() && !r.is_number_integer())
+      throw InputError(fmt::format("{}: got {}, expected a region tag (integer) or name (string)", where, r.dump()));
+    const int tag = region_tag(spec, where, r.is_string() ? r.get<std::string>() : r.dump());
+    if (std::find(tags.begin(), tags.end(), tag) != tags.end())
+      throw InputError(fmt::format("{}: got region {} twice, expected each region once", where, r.dump()));
+    tags.push_back(tag);
+  }
+  std::sort(tags.begin(), tags.end());
+  return tags;
+}
+
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool build_units) {
   RunSpec spec;
   spec.file = file;
@@ -615,6 +622,7 @@ RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc, bool
 
   read_cavities(root.child("cavities"), spec);
   read_circulation(root, spec);
+  spec.fluid = read_fluid(root.child("fluid"), spec);
   if (spec.beats > 0 && !spec.circulation)
     throw InputError(fmt::format("/time/beats: got {}, expected 0 without a /circulation (a beat lasts its period)",
                                  spec.beats));

@@ -14,6 +14,7 @@
 #include "common/spec/SpecNode.h"
 #include "coordinator/farm/FarmOptions.h"
 #include "coordinator/LoadStepper.h"
+#include "coordinator/macro/FluidSetup.h"
 #include "coordinator/macro/LineSearch.h"
 #include "coordinator/macro/MacroSolverOptions.h"
 #include "worker/MicroModel.h"
@@ -145,6 +146,8 @@ struct RunSpec {
   /// index in `cavities`: those cavities' pressures are unknowns of the macro system.
   std::shared_ptr<const Circulation> circulation;
   std::vector<int> coupled_cavities;
+  /// Blood on the fluid regions ("fluid"; null: none), macro/fluid_scene.h.
+  std::shared_ptr<const FluidSetup> fluid;
   int output_every = 0;
   int checkpoint_every = 0;       ///< output.checkpoint_every (0: only on a signal)
   bool checkpoint_factors = false;  ///< output.checkpoint_factors: units' numeric factors in the checkpoint
@@ -171,6 +174,10 @@ struct RunSpec {
 /// Every key is read by run_spec_schema(); `doc`, if given, records those read.
 /// `build_units` false: FE² models are only planned (PointModelSpec::plan, with their
 /// memory estimate), so they can be refused before allocation; build_unit_models builds them.
+/// `key` of `node`: a non-empty array of region tags or names of the spec's mesh, each
+/// once (ascending tags); an InputError naming the entry and the regions there are otherwise.
+std::vector<int> read_region_list(SpecNode& node, const std::string& key, const RunSpec& spec);
+
 RunSpec read_run_spec(const json& j, const std::string& file, SpecDoc* doc = nullptr,
                       bool build_units = true);
 RunSpec read_run_spec_file(const std::string& file, bool build_units = true);

@@ -50,6 +50,7 @@ Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const proto:
             partition_.parts());
   if (problem_.system().num_free() == 0)
     throw InputError("the Dirichlet conditions fix every degree of freedom: nothing to solve");
+  if (const MacroExtension scene = scene_extension(spec, extension); scene.initial) problem_.set_initial(scene.initial);
   // The scene's terms (macro/macro_scene.h); an effect that is off builds nothing.
   for (auto& term : scene_terms(spec, coupling_.points(), partition_, coupling_.responses())) {
     if (auto* cavities = dynamic_cast<CavityPressureTerm*>(term.get())) cavity_term_ = cavities;
@@ -84,13 +85,16 @@ std::vector<double> Simulation::cavity_volumes() const {
   return v;
 }
 
-std::vector<double> Simulation::nodal_pressure() const {
-  const Field* field = system().fields().find("pressure");
+std::vector<double> Simulation::nodal_pressure() const { return vertex_field_at_nodes("pressure"); }
+
+std::vector<double> Simulation::vertex_field_at_nodes(const std::string& name) const {
+  const Field* field = system().fields().find(name);
   if (!field) return {};
   const TetMesh& m = spec_.mesh;
   std::vector<double> p(m.num_nodes(), 0.0);
   for (int a : field->nodes()) p[a] = state()[field->node_dof(a)];
-  for (const auto& [edge, node] : m.edge_nodes) p[node] = 0.5 * (p[edge.first] + p[edge.second]);
+  for (const auto& [edge, node] : m.edge_nodes)
+    if (field->has_node(edge.first) && field->has_node(edge.second)) p[node] = 0.5 * (p[edge.first] + p[edge.second]);
   return p;
 }
 

@@ -144,6 +144,12 @@ class Simulation {
   /// Pressure at every mesh node (vertices: the unknown; edge nodes: the mean of their
   /// ends, which is the P1 field there); empty without a pressure field.
   std::vector<double> nodal_pressure() const;
+  /// A scalar field on the vertices (P1: "pressure", "fluid_pressure") at every mesh
+  /// node: the unknown at its vertices, the mean of an edge's ends at its edge nodes (the
+  /// P1 field there), zero off the field; empty without such a field.
+  std::vector<double> vertex_field_at_nodes(const std::string& name) const;
+  /// The rates ẋ of the fields with a time scheme (zero elsewhere), field by field.
+  const Eigen::VectorXd& rates() const { return problem_.v(); }
   /// Per element, the constant of an enriched P1+P0 pressure (0 for the first element
   /// and without enrichment): the total pressure is the nodal field plus this.
   std::vector<double> element_pressure() const;

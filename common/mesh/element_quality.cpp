@@ -5,6 +5,7 @@
 #include "common/error.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -44,12 +45,18 @@ ElementQuality element_quality(const TetMesh& m, int e) {
         q.max_det_J = std::max(q.max_det_J, d);
       }
   q.jacobian_ratio = q.max_det_J > 0.0 ? q.min_det_J / q.max_det_J : -1.0;
-  // Shape of the vertex tet: η = 6√2 V / l_rms³.
-  double l2 = 0.0;
-  for (const auto& edge : kTetEdges) l2 += (m.nodes[m.tets[e][edge[1]]] - m.nodes[m.tets[e][edge[0]]]).squaredNorm();
-  const double l_rms = std::sqrt(l2 / 6.0);
-  q.shape = 6.0 * std::sqrt(2.0) * tet_signed_volume(m, e) / (l_rms * l_rms * l_rms);
+  const auto& t = m.tets[e];
+  q.shape = tet_shape_quality(m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]], m.nodes[t[3]]);
   return q;
+}
+
+double tet_shape_quality(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+  const std::array<Vec3, 4> x = {x0, x1, x2, x3};
+  double l2 = 0.0;
+  for (const auto& edge : kTetEdges) l2 += (x[edge[1]] - x[edge[0]]).squaredNorm();
+  const double l_rms = std::sqrt(l2 / 6.0);
+  const double volume = (x1 - x0).dot((x2 - x0).cross(x3 - x0)) / 6.0;
+  return 6.0 * std::sqrt(2.0) * volume / (l_rms * l_rms * l_rms);
 }
 
 std::string describe(const ElementQuality& q) {

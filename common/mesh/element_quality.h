@@ -27,6 +27,9 @@ struct ElementQuality {
   double shape = 1.0;             ///< η of the vertex tet
 };
 
+/// η = 6√2 V / l_rms³ of a tet of vertices x0..x3 (1 regular, → 0 flat, < 0 inverted).
+double tet_shape_quality(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3);
+
 /// The quality of element e (linear meshes: ratio 1, only the shape varies).
 ElementQuality element_quality(const TetMesh& m, int e);
 

@@ -7,6 +7,7 @@
 #include "common/activation/activation_schema.h"
 #include "common/cellmodels/cell_model_schema.h"
 #include "common/circulation/circulation_schema.h"
+#include "common/fluid/fluid_schema.h"
 #include "common/materials/material_factory.h"
 
 #include <limits>
@@ -183,10 +184,7 @@ std::pair<std::string, Schema> frame_sheet() {
   return {"sheet", schema::numbers(3, std::vector<double>{0, 1, 0}, "sheet direction s (unit axis 2)")};
 }
 
-Schema ramp() {
-  return choice("linear", {"linear", "constant"},
-                "value(t) = value·t/t_end (linear) or value (constant)");
-}
+Schema ramp() { return ramp_schema(); }
 
 Schema mesh_order() {
   return integer(1, Range::closed(1, 2), "element order: 1 (4-node) or 2 (10-node tetrahedra)");
@@ -383,6 +381,7 @@ Schema make_run_spec_schema() {
                          {"max_gmres_iterations", integer(10, Range::closed(1, 500),
                                                           "a solve that needs more refactors for the next one")}})}})},
        {"circulation", circulation_schema()},
+       {"fluid", fluid_schema()},
        {"cavities",
         map(false, "cavities whose deformed volume is reported every step", "name",
             object(true, "a cavity",
@@ -472,6 +471,10 @@ Schema make_unit_spec_schema() {
 }
 
 }  // namespace
+
+Schema ramp_schema() {
+  return choice("linear", {"linear", "constant"}, "value(t) = value·t/t_end (linear) or value (constant)");
+}
 
 const SchemaNode& run_spec_schema() {
   static const Schema s = make_run_spec_schema();

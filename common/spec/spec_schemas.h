@@ -12,5 +12,7 @@ const SchemaNode& unit_spec_schema();
 /// The <material> and <unit> definitions, for reading one alone (tests, tools).
 const SchemaNode& material_schema();
 const SchemaNode& micro_unit_schema();
+/// "ramp" of a load or boundary value: linear (value·t/t_end) or constant.
+Schema ramp_schema();
 
 }  // namespace fe2

@@ -41,7 +41,7 @@ enum class TimeScheme {
 
 /// How the convergence test measures a field's residual R (on its free equations).
 enum class ResidualNorm {
-  relative_to_load,  ///< ‖R‖ / max(‖f_int‖, ‖f_ext‖) over the field: forces
+  relative_to_load,  ///< ‖R‖ / max(‖f_int‖, ‖f_ext‖, ‖s‖) over the field: forces (s: a floor)
   scaled_l2,         ///< ‖R‖ / ‖s‖, s the scale its terms report (MacroTerm::add_residual_scale)
   scaled_max,        ///< max_i |R_i| / s_i
 };

@@ -25,6 +25,14 @@ MacroProblem::MacroProblem(const RunSpec& spec, const proto::Group& group, Macro
   prescribed_value_ = [this](int k, double t) { return system_.prescribed_value(k, t); };
 }
 
+void MacroProblem::set_initial(
+    const std::function<void(const FieldTable&, Eigen::VectorXd& x, Eigen::VectorXd& v)>& initial) {
+  initial(system_.fields(), x_, v_);
+  system_.constraints().distribute(x_);
+  x_n_ = x_nm1_ = x_;
+  v_n_ = v_;
+}
+
 void MacroProblem::add_term(std::unique_ptr<MacroTerm> term) {
   FE2_CHECK(!pattern_set_, "macro term '{}' added after the first solve", term->name());
   terms_.push_back(std::move(term));
@@ -60,12 +68,9 @@ void MacroProblem::prepare() {
   solver_.set_pattern(system_.rows(), system_.cols());
   assembly_ = std::make_unique<MacroAssembly>(system_, values_);
   for (const Field& f : system_.fields()) {
-    Eigen::VectorXd scale;
-    if (f.decl().norm != ResidualNorm::relative_to_load) {
-      scale = Eigen::VectorXd::Zero(f.size());
-      for (const auto& term : terms_) term->add_residual_scale(f, scale);
-      group_.allreduce_sum(scale.data(), static_cast<int>(scale.size()));
-    }
+    Eigen::VectorXd scale = Eigen::VectorXd::Zero(f.size());
+    for (const auto& term : terms_) term->add_residual_scale(f, scale);
+    group_.allreduce_sum(scale.data(), static_cast<int>(scale.size()));
     residual_scales_.push_back(std::move(scale));
   }
   pattern_set_ = true;

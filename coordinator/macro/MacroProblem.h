@@ -30,6 +30,8 @@ class MacroProblem {
   /// Replaces the prescribed values: value(k, t) for the k-th prescribed DOF (tests:
   /// manufactured solutions). Before the first step.
   void set_prescribed_values(std::function<double(int k, double t)> value) { prescribed_value_ = std::move(value); }
+  /// Sets the initial state (values and rates, at t_start) by `initial`. Before the first step.
+  void set_initial(const std::function<void(const FieldTable&, Eigen::VectorXd& x, Eigen::VectorXd& v)>& initial);
 
   const MacroSystem& system() const { return system_; }
   const MacroSolver& solver() const { return solver_; }

@@ -75,7 +75,8 @@ class MacroTerm {
   /// the first assembly).
   virtual void declare(MacroSystem& system) = 0;
   /// Adds this process's part of the residual scale s of `field` (its size), for the
-  /// fields measured by ResidualNorm::scaled_l2 or scaled_max; summed over coordinators.
+  /// fields measured by ResidualNorm::scaled_l2 or scaled_max (and a floor of the load
+  /// for relative_to_load); summed over coordinators.
   virtual void add_residual_scale(const Field& /*field*/, Eigen::VectorXd& /*scale*/) const {}
   /// Adds residual and tangent at `state`.
   virtual void assemble(const MacroState& state, MacroAssembly& out) = 0;

@@ -1,13 +1,15 @@
 #include "coordinator/macro/NavierStokesTerm.h"
 
 #include "common/error.h"
+#include "common/fem/lagrange_tet.h"
 #include "common/fem/vertex_volumes.h"
 
 namespace fe2 {
 
 NavierStokesTerm::NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind,
-                                   NewtonianFluid fluid, Vec3 body_force)
-    : mesh_(mesh), elements_(std::move(elements)), kind_(kind), fluid_(fluid), body_force_(body_force) {}
+                                   NewtonianFluid fluid, Vec3 body_force, double residual_pressure)
+    : mesh_(mesh), elements_(std::move(elements)), kind_(kind), fluid_(fluid), body_force_(body_force),
+      residual_pressure_(residual_pressure) {}
 
 void NavierStokesTerm::declare(MacroSystem& system) {
   v_ = &system.field("fluid_velocity");
@@ -25,6 +27,24 @@ void NavierStokesTerm::declare(MacroSystem& system) {
 }
 
 void NavierStokesTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (field.id() == v_->id()) {
+    const int order = mesh_.order();
+    Eigen::VectorXd N;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+    for (size_t k = 0; k < elements_.size(); ++k) {
+      const std::vector<int>& nodes = nodes_[k];
+      for (const auto& q : tet_rule(2 * (order - 1))) {
+        tet_shape(order, q.bary, N, dN);
+        Mat3 J = Mat3::Zero();
+        for (size_t a = 0; a < nodes.size(); ++a) J += mesh_.nodes[nodes[a]] * dN.col(static_cast<Eigen::Index>(a)).transpose();
+        const Eigen::Matrix3Xd g = (J.transpose().inverse() * dN).cwiseAbs();
+        for (size_t a = 0; a < nodes.size(); ++a)
+          scale.segment<3>(v_->node_dof(nodes[a]) - field.offset()) +=
+              residual_pressure_ * q.weight * J.determinant() * g.col(static_cast<Eigen::Index>(a));
+      }
+    }
+    return;
+  }
   if (field.id() != p_->id()) return;
   for (size_t k = 0; k < elements_.size(); ++k) {
     const Eigen::Vector4d m = vertex_volumes(mesh_, elements_[k]);

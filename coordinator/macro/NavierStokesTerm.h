@@ -11,11 +11,14 @@ namespace fe2 {
 
 class NavierStokesTerm final : public MacroTerm {
  public:
+  /// `residual_pressure`: the pressure whose nodal forces floor the momentum residual's
+  /// reference (a flow whose forces all vanish, at rest or uniform, still converges).
   NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, NewtonianFluid fluid,
-                   Vec3 body_force);
+                   Vec3 body_force, double residual_pressure);
   std::string name() const override { return "navier-stokes"; }
   void declare(MacroSystem& system) override;
-  /// ∫ N_p dV per pressure DOF: the continuity residual's scale (a mean |div v|).
+  /// ∫ N_p dV per pressure DOF: the continuity residual's scale (a mean |div v|); and
+  /// P_ref ∫ |∂N_a/∂x_i| dV per velocity DOF: the momentum residual's floor.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
 
@@ -25,6 +28,7 @@ class NavierStokesTerm final : public MacroTerm {
   FluidElementKind kind_;
   NewtonianFluid fluid_;
   Vec3 body_force_;
+  double residual_pressure_;
   const Field *v_ = nullptr, *p_ = nullptr, *d_ = nullptr;
   std::vector<std::vector<int>> nodes_, dofs_;  ///< per element: its nodes; its v then p DOFs
   std::vector<int> local_;

@@ -22,7 +22,8 @@ std::vector<double> field_residual_norms(const MacroSystem& system, const Eigen:
         // Σ R_d² by fused multiply-adds, in DOF order: the same sum on every compiler.
         double r2 = 0.0;
         for (Eigen::Index d = o; d < o + n; ++d) r2 = std::fma(R[d], R[d], r2);
-        const double F_ref = std::max(f_int.segment(o, n).norm(), f_ext.segment(o, n).norm());
+        const double floor = scales[field.id()].size() > 0 ? scales[field.id()].norm() : 0.0;
+        const double F_ref = std::max({f_int.segment(o, n).norm(), f_ext.segment(o, n).norm(), floor});
         value = F_ref > 0 ? std::sqrt(r2) / F_ref : std::sqrt(r2);
         break;
       }

@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "coordinator/macro/FluidBoundaryTerms.h"
+#include "coordinator/macro/MeshMotionTerm.h"
 #include "coordinator/macro/NavierStokesTerm.h"
 
 #include <algorithm>
@@ -28,6 +29,10 @@ void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
     throw InputError(fmt::format("fluid element {}: needs a {} mesh; this mesh is {}",
                                  order == 2 ? "'taylor_hood' (P2/P1)" : "'p1p1' (stabilized P1/P1)",
                                  order == 2 ? "quadratic" : "linear", mesh.order() == 2 ? "quadratic" : "linear"));
+  if (setup.mesh_motion)
+    for (const auto& b : setup.mesh_motion->boundaries)
+      if (!mesh.node_sets.count(b.set))
+        throw InputError(fmt::format("fluid mesh motion boundary: the mesh has no node set '{}'", b.set));
   for (const FluidBoundary& b : setup.boundaries) {
     const bool on_faces = b.kind != FluidBoundary::Kind::velocity;
     if (on_faces ? !mesh.faces.count(b.set) : !mesh.node_sets.count(b.set))
@@ -48,9 +53,17 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   if (fluxes > 0)
     ext.fields.push_back({"fluid_flux_pressure", 1, FieldSpace::global, {}, fluxes, TimeScheme::none,
                           ResidualNorm::scaled_max, setup.rtol});
+  if (setup.mesh_motion)
+    ext.fields.push_back({"mesh_displacement", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
+                          ResidualNorm::relative_to_load, setup.rtol});
   if (setup.enclosed())
     ext.fields.push_back({"fluid_pressure_level", 1, FieldSpace::global, {}, 1, TimeScheme::none,
                           ResidualNorm::scaled_max, setup.rtol});
+  if (setup.initial_velocity)
+    ext.initial = [&mesh, g = setup.initial_velocity](const FieldTable& fields, Eigen::VectorXd& x, Eigen::VectorXd&) {
+      const Field& v = fields.at("fluid_velocity");
+      for (int a : v.nodes()) x.segment<3>(v.node_dof(a)) = g(mesh.nodes[a]);
+    };
   ext.constrain = [&mesh, setup](const FieldTable& fields, MacroConstraints& c) {
     const Field& v = fields.at("fluid_velocity");
     for (const FluidBoundary& b : setup.boundaries) {
@@ -62,6 +75,20 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
           if (b.components[i]) c.prescribe(v.node_dof(a, i), c.add_value([g = b.velocity, X, i](double t) { return g(X, t)[i]; }));
       }
     }
+    if (!setup.mesh_motion) return;
+    const Field& d = fields.at("mesh_displacement");
+    const Field& u = fields.at("displacement");
+    for (const auto& b : setup.mesh_motion->boundaries)
+      for (int a : mesh.node_sets.at(b.set)) {
+        if (!d.has_node(a)) continue;
+        const Vec3 X = mesh.nodes[a];
+        for (int i = 0; i < 3; ++i) {
+          if (b.displacement)
+            c.prescribe(d.node_dof(a, i), c.add_value([g = b.displacement, X, i](double t) { return g(X, t)[i]; }));
+          else if (u.has_node(a))
+            c.follow(d.node_dof(a, i), u.node_dof(a, i));
+        }
+      }
   };
   return ext;
 }
@@ -73,7 +100,8 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
     if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
       elements.push_back(e);
   std::vector<std::unique_ptr<MacroTerm>> terms;
-  terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.fluid, setup.body_force));
+  terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.fluid, setup.body_force,
+                                                     setup.residual_pressure));
   std::vector<OpenBoundaryTerm::Boundary> open;
   std::vector<FluxConstraintTerm::Boundary> flux;
   for (const FluidBoundary& b : setup.boundaries) {
@@ -83,6 +111,9 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   if (!open.empty()) terms.push_back(std::make_unique<OpenBoundaryTerm>(mesh, partition, setup.regions, open, setup.fluid.density));
   if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));
   if (setup.enclosed()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
+  if (setup.mesh_motion)
+    terms.push_back(std::make_unique<MeshMotionTerm>(mesh, elements, setup.mesh_motion->kind,
+                                                     setup.mesh_motion->stiffening));
   return terms;
 }
 

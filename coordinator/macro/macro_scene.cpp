@@ -4,10 +4,32 @@
 #include "coordinator/macro/FollowerPressureTerm.h"
 #include "coordinator/macro/IncompressibilityTerm.h"
 #include "coordinator/macro/InertiaTerm.h"
+#include "coordinator/macro/fluid_scene.h"
 
 namespace fe2 {
 
-FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension) {
+MacroExtension scene_extension(const RunSpec& spec, const MacroExtension& extension) {
+  if (!spec.fluid) return extension;
+  MacroExtension ext = fluid_extension(spec.mesh, *spec.fluid);
+  for (FieldDecl& f : ext.fields) f.rtol = spec.rtol_of(f.name);  // newton.field_rtol per fluid field
+  for (const FieldDecl& f : extension.fields) ext.fields.push_back(f);
+  if (extension.constrain)
+    ext.constrain = [fluid = ext.constrain, more = extension.constrain](const FieldTable& t, MacroConstraints& c) {
+      fluid(t, c);
+      more(t, c);
+    };
+  if (extension.initial) {
+    auto fluid = ext.initial;
+    ext.initial = [fluid, more = extension.initial](const FieldTable& t, Eigen::VectorXd& x, Eigen::VectorXd& v) {
+      if (fluid) fluid(t, x, v);
+      more(t, x, v);
+    };
+  }
+  return ext;
+}
+
+FieldTable scene_fields(const RunSpec& spec, const MacroExtension& user_extension) {
+  const MacroExtension extension = scene_extension(spec, user_extension);
   FieldTable t;
   FieldDecl u;
   u.name = "displacement";
@@ -44,8 +66,9 @@ FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension) {
   return t;
 }
 
-MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& extension) {
-  FieldTable fields = scene_fields(spec, extension);
+MacroSystem make_macro_system(const RunSpec& spec, const MacroExtension& user_extension) {
+  const MacroExtension extension = scene_extension(spec, user_extension);
+  FieldTable fields = scene_fields(spec, user_extension);
   MacroConstraints constraints;
   const Field& u = fields.at("displacement");
   for (size_t d = 0; d < spec.dirichlet.size(); ++d) {
@@ -74,6 +97,8 @@ std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const M
   if (spec.circulation) terms.push_back(std::make_unique<CavityPressureTerm>(spec, partition));
   if (spec.formulation.mixed)
     terms.push_back(std::make_unique<IncompressibilityTerm>(spec.mesh, points, wall, spec.formulation));
+  if (spec.fluid)
+    for (auto& term : fluid_terms(spec.mesh, *spec.fluid, partition)) terms.push_back(std::move(term));
   return terms;
 }
 

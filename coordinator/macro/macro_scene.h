@@ -11,6 +11,7 @@
 //                                               FollowerPressureTerm (/pressure)
 //   pressure         formulation.kind = mixed   IncompressibilityTerm
 //   cavity_pressure  a circulation is coupled   CavityPressureTerm
+//   fluid_*, mesh_displacement   "fluid"       fluid_scene.h (Navier–Stokes, boundaries, mesh motion)
 #include "coordinator/RunSpec.h"
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroSystem.h"
@@ -29,9 +30,16 @@ struct MacroExtension {
   std::vector<FieldDecl> fields;
   /// Adds constraints on the numbered fields (prescribed values, ties).
   std::function<void(const FieldTable&, MacroConstraints&)> constrain;
+  /// Sets the initial state at t_start of its fields (values x and rates v; the rest
+  /// stays zero); may be empty.
+  std::function<void(const FieldTable&, Eigen::VectorXd& x, Eigen::VectorXd& v)> initial;
 };
 
-/// The scene's fields, in block order: ū, then p, then p_c, then the extension's.
+/// The spec's fields beyond the wall's (its fluid) joined with `extension`: theirs first.
+MacroExtension scene_extension(const RunSpec& spec, const MacroExtension& extension);
+
+/// The scene's fields, in block order: ū, then p, then p_c, then the fluid's, then the
+/// extension's.
 FieldTable scene_fields(const RunSpec& spec, const MacroExtension& extension = {});
 
 /// The macro system: the scene's fields numbered on the mesh; the spec's Dirichlet

@@ -102,6 +102,24 @@ void RunOutput::write_fields(const Simulation& sim, const PointFields& fields, i
   std::vector<Vec3> disp(mesh.num_nodes());
   for (int a = 0; a < mesh.num_nodes(); ++a) disp[a] = u.segment<3>(3 * a);
   VtuFields point, cell;
+  // The fluid: its velocity, pressure and mesh velocity; its nodes off the wall move
+  // with the mesh displacement (so "Warp By Vector" moves wall and fluid alike).
+  if (const Field* v = sim.system().fields().find("fluid_velocity")) {
+    auto at_nodes = [&](const Field& f, const Eigen::VectorXd& x) {
+      const Eigen::VectorXd all = f.at_every_node(x, mesh.num_nodes());
+      std::vector<Vec3> out(mesh.num_nodes());
+      for (int a = 0; a < mesh.num_nodes(); ++a) out[a] = all.segment<3>(3 * a);
+      return out;
+    };
+    point.add_vector("fluid_velocity", at_nodes(*v, sim.state()));
+    point.add_scalar("fluid_pressure", sim.vertex_field_at_nodes("fluid_pressure"));
+    if (const Field* d = sim.system().fields().find("mesh_displacement")) {
+      point.add_vector("mesh_velocity", at_nodes(*d, sim.rates()));
+      const std::vector<Vec3> moved = at_nodes(*d, sim.state());
+      for (int a : d->nodes())
+        if (!sim.system().field("displacement").has_node(a)) disp[a] = moved[a];
+    }
+  }
   point.add_vector("displacement", disp);
   if (sim.system().fields().find("pressure")) point.add_scalar("pressure", sim.nodal_pressure());
   if (!pvd_) return;

@@ -7,9 +7,7 @@
 // wall's face y = 1, symmetry planes z = 0 and z = 0.5.
 #include "common/error.h"
 #include "common/mesh/regions.h"
-#include "coordinator/LocalPoints.h"
-#include "coordinator/Simulation.h"
-#include "coordinator/macro/fluid_scene.h"
+#include "tests/coordinator/fluid_fixtures.h"
 #include "tests/coordinator/scene_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -67,23 +65,19 @@ struct FluidRun {
 
 FluidRun run_fluid(RunSpec& spec, const FluidSetup& setup) {
   spec.mesh.node_sets["lid"] = interface_nodes(spec.mesh, {1}, {2});
-  LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points, fluid_extension(spec.mesh, setup));
-  for (auto& term : fluid_terms(spec.mesh, setup, MacroPartition::whole(spec.mesh))) sim.add_term(std::move(term));
+  test::FluidSimulation f(spec, setup);
   FluidRun r;
-  r.result = sim.run();
-  r.x = sim.state();
-  const Field& v = sim.system().field("fluid_velocity");
-  const Field& p = sim.system().field("fluid_pressure");
+  r.result = f.sim.run();
+  r.x = f.sim.state();
   const int nn = spec.mesh.num_nodes();
   r.velocity.assign(nn, Vec3::Zero());
   r.pressure.assign(nn, std::nan(""));
   r.fluid_node.assign(nn, 0);
-  for (int a : v.nodes()) {
-    r.velocity[a] = r.x.segment<3>(v.node_dof(a));
+  for (int a : f.field("fluid_velocity").nodes()) {
+    r.velocity[a] = f.velocity(a);
     r.fluid_node[a] = 1;
   }
-  for (int a : p.nodes()) r.pressure[a] = r.x[p.node_dof(a)];
+  for (int a : f.field("fluid_pressure").nodes()) r.pressure[a] = f.pressure(a);
   return r;
 }
 

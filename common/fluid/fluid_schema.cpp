@@ -1,0 +1,96 @@
+#include "common/fluid/fluid_schema.h"
+
+#include "common/spec/spec_schemas.h"
+
+namespace fe2 {
+
+using namespace schema;
+using std::nullopt;
+
+namespace {
+
+Schema set_key(const char* what) { return string(nullopt, what); }
+
+Schema components() {
+  return integers(-1, std::vector<double>{0, 1, 2}, Range::closed(0, 2),
+                  "prescribed components: any of 0 (x), 1 (y), 2 (z); the others are free (a slip plane "
+                  "prescribes only its normal one)");
+}
+
+Schema boundary() {
+  return object(
+      true, "a boundary condition of the fluid on a node set (velocities) or face set (pressure, flux)",
+      {{"kind", choice(nullopt, {"no_slip", "velocity", "pressure", "flux"},
+                       "no_slip: v = 0; velocity: v prescribed; pressure: traction −P n on an open "
+                       "boundary; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure")}},
+      "kind",
+      {{"no_slip", {{"set", set_key("named node set (or face)")}, {"components", components()}}},
+       {"velocity",
+        {{"set", set_key("named node set (or face)")},
+         {"components", components()},
+         {"value", numbers(3, nullopt, "velocity at t_end (length/s)")},
+         {"ramp", ramp_schema()}}},
+       {"pressure",
+        {{"set", set_key("named boundary face set of the fluid")},
+         {"value", number(nullopt, Range::any(), "pressure P at t_end (Pa)")},
+         {"ramp", ramp_schema()},
+         {"backflow", number(0.0, Range::non_negative(),
+                             "β of the backflow stabilization (Moghadam et al. 2011): dissipates the "
+                             "kinetic energy of flow coming back in; 0.2–1 on outlets that may see "
+                             "reversed flow, 0: off")}}},
+       {"flux",
+        {{"set", set_key("named boundary face set of the fluid")},
+         {"value", number(nullopt, Range::any(), "flux Q at t_end, out of the fluid (volume/s)")},
+         {"ramp", ramp_schema()}}}});
+}
+
+Schema mesh_motion() {
+  return object(false,
+                "the fluid mesh's motion (ALE): its displacement extends its boundary values into the "
+                "fluid; absent: the mesh stays where it is",
+                {{"kind", choice("harmonic", {"harmonic", "elastic"},
+                                 "extension: harmonic (Laplace per component) or linear elastic (ν = 0.3)")},
+                 {"stiffening", number(1.0, Range::closed(0.0, 4.0),
+                                       "χ of the Jacobian-based stiffening (V̄/V_e)^χ: small elements deform "
+                                       "less (0: none)")},
+                 {"boundaries",
+                  array(true, "where the mesh displacement is given; every fluid boundary node should be in one",
+                        object(true, "a mesh-motion boundary",
+                               {{"set", set_key("named node set (or face)")},
+                                {"follow", choice("fixed", {"fixed", "wall"},
+                                                  "fixed: d = 0; wall: d = the wall's displacement on the "
+                                                  "set's nodes shared with the wall")}}),
+                        1)}});
+}
+
+}  // namespace
+
+Schema fluid_schema() {
+  return object(
+      false,
+      "blood: incompressible Newtonian Navier–Stokes in ALE form on the fluid regions (paper Eq. 1, "
+      "§II-A), solved with the wall in one Newton loop; absent: no fluid (nothing allocated)",
+      {{"regions", required(custom("array of region tags or names", "the regions of the fluid",
+                                   {{"type", "array"}, {"items", {{"type", {"string", "integer"}}}}, {"minItems", 1}}))},
+       {"density", number(nullopt, Range::positive(),
+                          "ρ in units consistent with the mesh's lengths, seconds and Pa: blood 1.06e-3 with "
+                          "lengths in mm (1060 kg/m³), 1060 with lengths in m")},
+       {"viscosity", number(nullopt, Range::positive(), "dynamic viscosity μ (Pa s): blood about 3.5e-3")},
+       {"element", choice("auto", {"auto", "taylor_hood", "p1p1"},
+                          "taylor_hood: P2/P1 (quadratic meshes); p1p1: SUPG/PSPG/LSIC-stabilized P1/P1 "
+                          "(linear meshes); auto: the one of the mesh's order")},
+       {"time", choice("bdf2", {"bdf2", "bdf1", "steady"},
+                       "∂v/∂t by BDF2 (second order, variable step), BDF1, or none (the steady equations)")},
+       {"body_force", numbers(3, std::vector<double>{0, 0, 0}, "body force per unit mass (length/s²)")},
+       {"initial_velocity", numbers(3, std::vector<double>{0, 0, 0}, "uniform velocity at the start")},
+       {"residual_pressure",
+        number(1.0, Range::positive(),
+               "Pa: the momentum residual is measured against the forces of at least this pressure "
+               "(a flow at rest has no forces to compare with)")},
+       {"boundaries", array(true, "the fluid's boundary conditions, applied in order (a later velocity "
+                                  "condition on a node replaces an earlier one)",
+                            boundary(), 1)},
+       {"mesh_motion", mesh_motion()}});
+}
+
+}  // namespace fe2

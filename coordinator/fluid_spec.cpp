@@ -1,0 +1,111 @@
+#include "coordinator/fluid_spec.h"
+
+#include "common/error.h"
+#include "coordinator/RunSpec.h"
+
+namespace fe2 {
+
+namespace {
+
+Vec3 vec3_of(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+std::array<bool, 3> components_of(SpecNode& b) {
+  std::array<bool, 3> c = {false, false, false};
+  for (double k : b.numbers("components")) c[static_cast<int>(k)] = true;  // integers in [0, 2]
+  return c;
+}
+
+/// value · ramp(t) of a boundary entry.
+std::function<double(double)> ramped(SpecNode& b, const RunSpec& spec) {
+  const double value = b.number("value");
+  const Ramp ramp = b.choice("ramp") == "linear" ? Ramp::linear : Ramp::constant;
+  const double t_end = spec.t_end;
+  return [value, ramp, t_end](double t) { return value * ramp_factor(ramp, t, t_end); };
+}
+
+void check_set(SpecNode& b, const std::map<std::string, std::vector<int>>& node_sets, const std::string& set) {
+  if (!node_sets.count(set)) b.fail("set", "a named node set or face of the mesh");
+}
+
+}  // namespace
+
+std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec) {
+  if (!node.has("regions")) {
+    node.finish();
+    return nullptr;
+  }
+  auto setup = std::make_shared<FluidSetup>();
+  FluidSetup& s = *setup;
+  s.regions = read_region_list(node, "regions", spec);
+  for (int tag : s.regions)
+    if (spec.is_wall_region(tag))
+      node.fail("regions", fmt::format("regions that are not wall (region {} is; set /mesh/wall_regions to the "
+                                       "wall's regions alone)",
+                                       tag));
+  s.fluid = {node.number("density"), node.number("viscosity")};
+  const std::string element = node.choice("element");
+  const int order = spec.mesh.order();
+  if (element == "auto") s.element = order == 2 ? FluidElementKind::taylor_hood : FluidElementKind::stabilized_p1p1;
+  else if (element == "taylor_hood") s.element = FluidElementKind::taylor_hood;
+  else s.element = FluidElementKind::stabilized_p1p1;
+  if ((s.element == FluidElementKind::taylor_hood) != (order == 2))
+    node.fail("element", fmt::format("the element of the mesh's order ({}): {}", order == 2 ? "quadratic" : "linear",
+                                     order == 2 ? "\"taylor_hood\" or \"auto\"" : "\"p1p1\" or \"auto\""));
+  const std::string time = node.choice("time");
+  s.time = time == "bdf2" ? TimeScheme::bdf2 : time == "bdf1" ? TimeScheme::backward_euler : TimeScheme::none;
+  s.body_force = vec3_of(node.numbers("body_force"));
+  const Vec3 v0 = vec3_of(node.numbers("initial_velocity"));
+  if (v0.squaredNorm() > 0) s.initial_velocity = [v0](const Vec3&) { return v0; };
+  s.residual_pressure = node.number("residual_pressure");
+  s.rtol = spec.rtol_of("fluid_velocity");
+
+  for (SpecNode& b : node.children("boundaries")) {
+    const std::string kind = b.choice("kind");
+    const std::string set = b.string("set");
+    if (kind == "no_slip" || kind == "velocity") {
+      check_set(b, spec.mesh.node_sets, set);
+      const std::array<bool, 3> comps = components_of(b);
+      if (kind == "no_slip") {
+        s.boundaries.push_back(FluidBoundary::no_slip(set, comps));
+      } else {
+        const Vec3 value = vec3_of(b.numbers("value"));
+        const Ramp ramp = b.choice("ramp") == "linear" ? Ramp::linear : Ramp::constant;
+        const double t_end = spec.t_end;
+        s.boundaries.push_back(FluidBoundary::prescribed_velocity(
+            set, [value, ramp, t_end](const Vec3&, double t) { return Vec3(value * ramp_factor(ramp, t, t_end)); },
+            comps));
+      }
+    } else {
+      if (!spec.mesh.faces.count(set)) b.fail("set", "a named boundary face set of the mesh");
+      if (kind == "pressure") {
+        auto P = ramped(b, spec);
+        s.boundaries.push_back(FluidBoundary::pressure(set, P, b.number("backflow")));
+      } else {
+        s.boundaries.push_back(FluidBoundary::flux(set, ramped(b, spec)));
+      }
+    }
+    b.finish();
+  }
+
+  if (node.has("mesh_motion")) {
+    SpecNode m = node.child("mesh_motion");
+    MeshMotionSetup motion;
+    motion.kind = m.choice("kind") == "elastic" ? MeshMotionKind::elastic : MeshMotionKind::harmonic;
+    motion.stiffening = m.number("stiffening");
+    for (SpecNode& b : m.children("boundaries")) {
+      const std::string set = b.string("set");
+      check_set(b, spec.mesh.node_sets, set);
+      if (b.choice("follow") == "fixed")
+        motion.boundaries.push_back({set, [](const Vec3&, double) { return Vec3(Vec3::Zero()); }});
+      else
+        motion.boundaries.push_back({set, {}});
+      b.finish();
+    }
+    m.finish();
+    s.mesh_motion = motion;
+  }
+  node.finish();
+  return setup;
+}
+
+}  // namespace fe2

@@ -1,0 +1,95 @@
+#pragma once
+// What a scene's blood is (fluid_scene.h builds its fields and terms from it): regions,
+// fluid, element, time scheme, boundary conditions by set, the mesh's motion. Read from
+// the spec's "fluid" section (coordinator/fluid_spec.h) or built in code (tests).
+#include "common/fluid/navier_stokes_element.h"
+#include "coordinator/macro/FieldTable.h"
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fe2 {
+
+/// How the mesh displacement extends its boundary values (MeshMotionTerm.h).
+enum class MeshMotionKind { harmonic, elastic };
+
+struct FluidBoundary {
+  enum class Kind { velocity, pressure, flux };
+  Kind kind = Kind::velocity;
+  std::string set;   ///< a node set (velocity) or a face set (pressure, flux)
+  /// velocity: the prescribed value at reference point X and time t; components[i]
+  /// false leaves component i free (a slip or symmetry plane).
+  std::function<Vec3(const Vec3& X, double t)> velocity;
+  std::array<bool, 3> components = {true, true, true};
+  /// pressure: P(t); flux: Q(t) (volume per time, positive out of the fluid).
+  std::function<double(double t)> value;
+  double backflow = 0.0;  ///< pressure faces: β of the backflow term (0: off)
+
+  using VelocityValue = std::function<Vec3(const Vec3& X, double t)>;
+  using ScalarValue = std::function<double(double t)>;
+  static FluidBoundary prescribed_velocity(std::string set, VelocityValue g, std::array<bool, 3> components = {true, true, true}) {
+    FluidBoundary b;
+    b.set = std::move(set);
+    b.velocity = std::move(g);
+    b.components = components;
+    return b;
+  }
+  /// v = 0 on the set's nodes (components: a slip plane holds only its normal one).
+  static FluidBoundary no_slip(std::string set, std::array<bool, 3> components = {true, true, true}) {
+    return prescribed_velocity(std::move(set), [](const Vec3&, double) { return Vec3(Vec3::Zero()); }, components);
+  }
+  static FluidBoundary pressure(std::string set, ScalarValue P, double backflow = 0.0) {
+    FluidBoundary b;
+    b.kind = Kind::pressure;
+    b.set = std::move(set);
+    b.value = std::move(P);
+    b.backflow = backflow;
+    return b;
+  }
+  static FluidBoundary flux(std::string set, ScalarValue Q) {
+    FluidBoundary b;
+    b.kind = Kind::flux;
+    b.set = std::move(set);
+    b.value = std::move(Q);
+    return b;
+  }
+};
+
+/// The fluid mesh's motion (MeshMotionTerm.h): the mesh_displacement field on the fluid,
+/// moved by its boundary.
+struct MeshMotionSetup {
+  MeshMotionKind kind = MeshMotionKind::harmonic;
+  double stiffening = 1.0;  ///< χ of s_e = (V̄/V_e)^χ
+  struct Boundary {
+    std::string set;  ///< a node set
+    /// d(X, t) on the set's fluid nodes; empty: follow the wall's displacement there
+    /// (the set's nodes shared with the wall).
+    std::function<Vec3(const Vec3& X, double t)> displacement;
+  };
+  std::vector<Boundary> boundaries;
+};
+
+struct FluidSetup {
+  std::vector<int> regions;          ///< region tags of the fluid
+  NewtonianFluid fluid;
+  FluidElementKind element = FluidElementKind::taylor_hood;
+  TimeScheme time = TimeScheme::bdf2;///< none: the steady equations
+  Vec3 body_force = Vec3::Zero();    ///< per unit mass
+  std::vector<FluidBoundary> boundaries;
+  std::optional<MeshMotionSetup> mesh_motion;  ///< none: a fixed (Eulerian) fluid mesh
+  /// The velocity at t_start at reference point X (empty: at rest).
+  std::function<Vec3(const Vec3& X)> initial_velocity;
+  double rtol = 1e-8;
+  /// The pressure whose nodal forces floor the momentum residual's reference: below
+  /// rtol times these the flow is converged even when every force vanishes.
+  double residual_pressure = 1.0;
+  /// No pressure boundary: the pressure level needs its constraint.
+  bool enclosed() const;
+  /// The flux boundaries' indices into `boundaries`, in order (their multipliers' order).
+  std::vector<int> flux_boundaries() const;
+};
+
+}  // namespace fe2

@@ -1,0 +1,47 @@
+#pragma once
+// The fluid mesh follows its boundary (paper §II-A: the ALE map): the mesh displacement d
+// solves, on the reference fluid mesh, a linear extension of its boundary values
+//   harmonic   ∫ s_e ∇w : ∇d dV = 0                       (each component Laplace)
+//   elastic    ∫ s_e (2 ε(w):ε(d) + λ' div w div d) dV = 0 (λ' = 2ν/(1 − 2ν), ν = 0.3)
+// with Jacobian-based stiffening s_e = (V̄/V_e)^χ (Stein, Tezduyar & Benney 2003, J Appl
+// Mech 70:58; V̄ the fluid's mean element volume): small elements, near the moving walls
+// where they are smallest, are stiffer and deform less. χ = 0 is the plain extension.
+// Linear in d: its block is constant, its residual K d. Its boundary values are
+// constraints (prescribed, or following the wall displacement on shared nodes).
+//
+// The term also watches the moved mesh: at every commit it measures the worst fluid
+// element (shape η = 6√2 V/l_rms³ of the current vertex tet, element_quality.h), logs
+// it, and keeps it for the step record. An inverted fluid element is a NumericalError
+// of the fluid element itself (the step is cut back).
+#include "common/mesh/TetMesh.h"
+#include "coordinator/macro/FluidSetup.h"
+#include "coordinator/macro/MacroTerm.h"
+
+namespace fe2 {
+
+class MeshMotionTerm final : public MacroTerm {
+ public:
+  MeshMotionTerm(const TetMesh& mesh, std::vector<int> elements, MeshMotionKind kind, double stiffening);
+  std::string name() const override { return "mesh motion"; }
+  void declare(MacroSystem& system) override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+  void commit(const MacroState& state) override;
+  /// The worst current shape η over this partition's fluid elements at the last commit
+  /// (1 for a regular tet, ≤ 0 inverted), and its element.
+  double worst_quality() const { return worst_quality_; }
+  int worst_element() const { return worst_element_; }
+
+ private:
+  const TetMesh& mesh_;
+  std::vector<int> elements_;
+  MeshMotionKind kind_;
+  double stiffening_;
+  const Field* d_ = nullptr;
+  std::vector<std::vector<int>> dofs_;
+  std::vector<Eigen::MatrixXd> stiffness_;
+  std::vector<int> local_;
+  double worst_quality_ = 1.0;
+  int worst_element_ = -1;
+};
+
+}  // namespace fe2
