@@ -118,6 +118,7 @@ void Simulation::observe(StepRecord& rec) const {
     rec.circulation = cavity_term_->flows();  // valid on the coordinator that assembles it
   }
   for (const auto& ps : spec_.pressure) rec.load_pressures.push_back(ps.value * ramp_factor(ps.ramp, t, spec_.t_end));
+  rec.observables = problem_.observe();
 }
 
 // --- (i): convergence, the same on every coordinator

@@ -71,6 +71,8 @@ struct StepRecord {
   std::vector<Vec3> probes;             ///< per spec.probes, deformed position at the end of the step
   std::vector<double> cavity_pressures; ///< coupled: p_c per circulation cavity, Pa
   CavityFlows circulation;              ///< coupled: flows, valves, phases (on the assembling coordinator)
+  /// The terms' observables at the end of the step (MacroTerm::observe), in term order.
+  std::vector<std::pair<std::string, double>> observables;
 };
 
 struct RunResult {
@@ -211,7 +213,8 @@ class Simulation {
   /// Why a failing mixed run's elements may be the cause: failure_diagnosis.h's
   /// volume_diagnosis of the committed state ("" if nothing stands out).
   std::string volume_diagnosis() const;
-  /// The step's observables: cavity volumes, probes, cavity pressures and flows, loads.
+  /// The step's observables: cavity volumes, probes, cavity pressures and flows, loads, the
+  /// terms' observables. @note Collective.
   void observe(StepRecord& rec) const;
   /// time.beats: records the last beat's EDV change; true when below the tolerance.
   bool beat_is_periodic(RunResult& result) const;

@@ -23,8 +23,12 @@ std::function<double(double)> ramped(SpecNode& b, const RunSpec& spec) {
   return [value, ramp, t_end](double t) { return value * ramp_factor(ramp, t, t_end); };
 }
 
-void check_set(SpecNode& b, const std::map<std::string, std::vector<int>>& node_sets, const std::string& set) {
-  if (!node_sets.count(set)) b.fail("set", "a named node set or face of the mesh");
+template <class Named>
+void check_set(SpecNode& b, const Named& sets, const std::string& set, const char* what) {
+  if (sets.count(set)) return;
+  std::vector<std::string> names;
+  for (const auto& [name, _] : sets) names.push_back(name);
+  b.fail("set", known_names(what, set, names));
 }
 
 }  // namespace
@@ -63,7 +67,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
     const std::string kind = b.choice("kind");
     const std::string set = b.string("set");
     if (kind == "no_slip" || kind == "velocity") {
-      check_set(b, spec.mesh.node_sets, set);
+      check_set(b, spec.mesh.node_sets, set, "a named node set or face of the mesh");
       const std::array<bool, 3> comps = components_of(b);
       if (kind == "no_slip") {
         s.boundaries.push_back(FluidBoundary::no_slip(set, comps));
@@ -76,7 +80,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
             comps));
       }
     } else {
-      if (!spec.mesh.faces.count(set)) b.fail("set", "a named boundary face set of the mesh");
+      check_set(b, spec.mesh.faces, set, "a named boundary face set of the mesh");
       if (kind == "pressure") {
         auto P = ramped(b, spec);
         s.boundaries.push_back(FluidBoundary::pressure(set, P, b.number("backflow")));
@@ -94,7 +98,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
     motion.stiffening = m.number("stiffening");
     for (SpecNode& b : m.children("boundaries")) {
       const std::string set = b.string("set");
-      check_set(b, spec.mesh.node_sets, set);
+      check_set(b, spec.mesh.node_sets, set, "a named node set or face of the mesh");
       if (b.choice("follow") == "fixed")
         motion.boundaries.push_back({set, [](const Vec3&, double) { return Vec3(Vec3::Zero()); }});
       else

@@ -48,6 +48,20 @@ void fluid_face_geometry(const TetMesh& mesh, const Field* d, const std::vector<
   }
 }
 
+std::vector<double> face_fluxes(const TetMesh& mesh, const Field& v, const Field* d, const std::vector<FluidFace>& faces,
+                                size_t boundaries, const MacroState& s) {
+  std::vector<double> Q(boundaries, 0.0);
+  Eigen::Matrix3Xd x, w;
+  for (const FluidFace& f : faces) {
+    fluid_face_geometry(mesh, d, f.nodes, s, x, w);
+    const Eigen::Matrix3Xd S = face_normal_integrals(mesh.order(), x);
+    for (size_t a = 0; a < f.nodes.size(); ++a)
+      Q[f.boundary] += (s.x.segment<3>(v.node_dof(f.nodes[a])) - w.col(static_cast<Eigen::Index>(a)))
+                           .dot(S.col(static_cast<Eigen::Index>(a)));
+  }
+  return Q;
+}
+
 // --- open (pressure) boundaries
 
 OpenBoundaryTerm::OpenBoundaryTerm(const TetMesh& mesh, const MacroPartition& partition,
@@ -82,6 +96,11 @@ void OpenBoundaryTerm::assemble(const MacroState& state, MacroAssembly& out) {
     out.add_internal(dofs_[k], R);
     out.add_tangent(local_[k], K);
   }
+}
+
+void OpenBoundaryTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  const std::vector<double> Q = face_fluxes(mesh_, *v_, d_, faces_, boundaries_.size(), state);
+  for (size_t b = 0; b < boundaries_.size(); ++b) out.push_back({"flux:" + boundaries_[b].set, Q[b]});
 }
 
 // --- flux constraints
@@ -134,6 +153,16 @@ void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
   for (size_t b = 0; b < boundaries_.size(); ++b)
     out.add_external({lambda_->global_dof(static_cast<int>(b))},
                      Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
+}
+
+void FluxConstraintTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  const std::vector<double> Q = face_fluxes(mesh_, *v_, d_, faces_, boundaries_.size(), state);
+  for (size_t b = 0; b < boundaries_.size(); ++b) {
+    out.push_back({"flux:" + boundaries_[b].set, Q[b]});
+    // λ is global: one coordinator reports it, the sum over them is its value.
+    out.push_back({"flux_pressure:" + boundaries_[b].set,
+                   owns_globals_ ? state.x[lambda_->global_dof(static_cast<int>(b))] : 0.0});
+  }
 }
 
 // --- the pressure level of an enclosed fluid

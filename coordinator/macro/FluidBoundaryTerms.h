@@ -25,6 +25,10 @@ struct FluidFace {
 void fluid_face_geometry(const TetMesh& mesh, const Field* d, const std::vector<int>& nodes, const MacroState& s,
                          Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& w);
 
+/// Σ over `faces` of ∫(v − v̂)·n da, per boundary index (`boundaries` of them).
+std::vector<double> face_fluxes(const TetMesh& mesh, const Field& v, const Field* d, const std::vector<FluidFace>& faces,
+                                size_t boundaries, const MacroState& s);
+
 class OpenBoundaryTerm final : public MacroTerm {
  public:
   struct Boundary {
@@ -38,6 +42,8 @@ class OpenBoundaryTerm final : public MacroTerm {
   std::string name() const override { return "fluid open boundary"; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// flux:<set> = ∫(v − v̂)·n da per boundary (out of the fluid).
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:
   const TetMesh& mesh_;
@@ -59,6 +65,8 @@ class FluxConstraintTerm final : public MacroTerm {
                      std::vector<Boundary> boundaries);
   std::string name() const override { return "fluid flux constraint"; }
   void declare(MacroSystem& system) override;
+  /// flux:<set> = ∫(v − v̂)·n da and flux_pressure:<set> = λ per boundary.
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
   /// The face areas (reference): R_λ's scale, so its measure is a mean normal velocity.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;

@@ -159,6 +159,20 @@ void MacroProblem::commit(double t_new, double dt) {
   t_n_ = t_new;
 }
 
+std::vector<std::pair<std::string, double>> MacroProblem::observe() const {
+  const MacroState s = state(t_n_, dt_n_);
+  std::vector<Observable> all;
+  for (const auto& term : terms_) term->observe(s, all);
+  // Sums in one reduction; a minimum as the maximum of its negative.
+  std::vector<double> sums;
+  for (const Observable& o : all) sums.push_back(o.minimum ? 0.0 : o.value);
+  group_.allreduce_sum(sums.data(), static_cast<int>(sums.size()));
+  std::vector<std::pair<std::string, double>> out;
+  for (size_t k = 0; k < all.size(); ++k)
+    out.emplace_back(all[k].name, all[k].minimum ? -group_.allreduce_max(-all[k].value) : sums[k]);
+  return out;
+}
+
 void MacroProblem::rollback() {
   for (auto& term : terms_) term->rollback();
   x_ = x_n_;

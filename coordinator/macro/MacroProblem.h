@@ -66,6 +66,9 @@ class MacroProblem {
   void retract(double alpha, bool first, const Eigen::VectorXd& du_D);
 
   void commit(double t_new, double dt);
+  /// Every term's observables at the committed state, reduced over the coordinators.
+  /// @note Collective.
+  std::vector<std::pair<std::string, double>> observe() const;
   void rollback();
   /// t, x and its rates, each term's history (the committed state).
   void save(ByteWriter& w) const;

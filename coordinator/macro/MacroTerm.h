@@ -67,6 +67,15 @@ class MacroAssembly {
   const Eigen::VectorXd* lift_ = nullptr;
 };
 
+/// A scalar a term reports at the end of every step (summary.json
+/// history[].observables): its value on this coordinator's part, summed over the
+/// coordinators (integrals, fluxes), or their minimum (a worst quality).
+struct Observable {
+  std::string name;
+  double value = 0.0;
+  bool minimum = false;
+};
+
 class MacroTerm {
  public:
   virtual ~MacroTerm() = default;
@@ -80,6 +89,9 @@ class MacroTerm {
   virtual void add_residual_scale(const Field& /*field*/, Eigen::VectorXd& /*scale*/) const {}
   /// Adds residual and tangent at `state`.
   virtual void assemble(const MacroState& state, MacroAssembly& out) = 0;
+  /// Appends its observables at the committed state; the same names, in the same order,
+  /// on every coordinator.
+  virtual void observe(const MacroState& /*state*/, std::vector<Observable>& /*out*/) const {}
   /// The step converged / is being cut back (terms with their own history).
   virtual void commit(const MacroState&) {}
   virtual void rollback() {}

@@ -4,8 +4,8 @@
 #include "common/mesh/element_quality.h"
 #include "coordinator/macro/gather.h"
 
-#include <spdlog/spdlog.h>
-
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace fe2 {
@@ -64,24 +64,17 @@ void MeshMotionTerm::assemble(const MacroState& state, MacroAssembly& out) {
   }
 }
 
-void MeshMotionTerm::commit(const MacroState& state) {
-  worst_quality_ = 1.0;
-  worst_element_ = -1;
+void MeshMotionTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  double worst = 1.0;
   for (int e : elements_) {
     std::array<Vec3, 4> x;
     for (int a = 0; a < 4; ++a) {
       const int node = mesh_.tets[e][a];
       x[a] = mesh_.nodes[node] + state.x.segment<3>(d_->node_dof(node));
     }
-    const double q = tet_shape_quality(x[0], x[1], x[2], x[3]);
-    if (worst_element_ < 0 || q < worst_quality_) {
-      worst_quality_ = q;
-      worst_element_ = e;
-    }
+    worst = std::min(worst, tet_shape_quality(x[0], x[1], x[2], x[3]));
   }
-  if (worst_element_ >= 0)
-    spdlog::debug("t = {:.6g}: worst fluid element {} (shape 6√2 V/l³ = {:.3g})", state.time, worst_element_,
-                  worst_quality_);
+  out.push_back({"fluid_mesh_worst_shape", worst, true});
 }
 
 }  // namespace fe2

@@ -9,10 +9,10 @@
 // Linear in d: its block is constant, its residual K d. Its boundary values are
 // constraints (prescribed, or following the wall displacement on shared nodes).
 //
-// The term also watches the moved mesh: at every commit it measures the worst fluid
-// element (shape η = 6√2 V/l_rms³ of the current vertex tet, element_quality.h), logs
-// it, and keeps it for the step record. An inverted fluid element is a NumericalError
-// of the fluid element itself (the step is cut back).
+// The term also watches the moved mesh: every step it reports the worst fluid element's
+// shape (η = 6√2 V/l_rms³ of the current vertex tet, element_quality.h) as the
+// observable fluid_mesh_worst_shape. An inverted fluid element is a NumericalError of
+// the fluid element itself (the step is cut back).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/macro/FluidSetup.h"
 #include "coordinator/macro/MacroTerm.h"
@@ -25,11 +25,9 @@ class MeshMotionTerm final : public MacroTerm {
   std::string name() const override { return "mesh motion"; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
-  void commit(const MacroState& state) override;
-  /// The worst current shape η over this partition's fluid elements at the last commit
-  /// (1 for a regular tet, ≤ 0 inverted), and its element.
-  double worst_quality() const { return worst_quality_; }
-  int worst_element() const { return worst_element_; }
+  /// fluid_mesh_worst_shape: the worst current η over the fluid's elements (1 for a
+  /// regular tet, ≤ 0 inverted).
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:
   const TetMesh& mesh_;
@@ -40,8 +38,6 @@ class MeshMotionTerm final : public MacroTerm {
   std::vector<std::vector<int>> dofs_;
   std::vector<Eigen::MatrixXd> stiffness_;
   std::vector<int> local_;
-  double worst_quality_ = 1.0;
-  int worst_element_ = -1;
 };
 
 }  // namespace fe2

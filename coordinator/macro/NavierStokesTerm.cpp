@@ -52,6 +52,28 @@ void NavierStokesTerm::add_residual_scale(const Field& field, Eigen::VectorXd& s
   }
 }
 
+void NavierStokesTerm::gather_element(size_t k, const MacroState& state, FluidElementState& s) const {
+  const std::vector<int>& nodes = nodes_[k];
+  const int n = static_cast<int>(nodes.size());
+  s.x.resize(3, n);
+  s.v.resize(3, n);
+  s.v_rate.resize(3, n);
+  s.w.resize(3, n);
+  for (int a = 0; a < n; ++a) {
+    const int dof = v_->node_dof(nodes[a]);
+    s.v.col(a) = state.x.segment<3>(dof);
+    s.v_rate.col(a) = state.v.segment<3>(dof);
+    s.x.col(a) = mesh_.nodes[nodes[a]];
+    s.w.col(a).setZero();
+    if (d_ && d_->has_node(nodes[a])) {
+      const int m = d_->node_dof(nodes[a]);
+      s.x.col(a) += state.x.segment<3>(m);
+      s.w.col(a) = state.v.segment<3>(m);
+    }
+  }
+  for (int b = 0; b < 4; ++b) s.p[b] = state.x[dofs_[k][3 * n + b]];
+}
+
 void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const double dv_rate_dv = state.rate(*v_).dv_dx;
   FluidElementState s;
@@ -61,25 +83,7 @@ void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
   Eigen::VectorXd R;
   Eigen::MatrixXd K;
   for (size_t k = 0; k < elements_.size(); ++k) {
-    const std::vector<int>& nodes = nodes_[k];
-    const int n = static_cast<int>(nodes.size());
-    s.x.resize(3, n);
-    s.v.resize(3, n);
-    s.v_rate.resize(3, n);
-    s.w.resize(3, n);
-    for (int a = 0; a < n; ++a) {
-      const int dof = v_->node_dof(nodes[a]);
-      s.v.col(a) = state.x.segment<3>(dof);
-      s.v_rate.col(a) = state.v.segment<3>(dof);
-      s.x.col(a) = mesh_.nodes[nodes[a]];
-      s.w.col(a).setZero();
-      if (d_ && d_->has_node(nodes[a])) {
-        const int m = d_->node_dof(nodes[a]);
-        s.x.col(a) += state.x.segment<3>(m);
-        s.w.col(a) = state.v.segment<3>(m);
-      }
-    }
-    for (int b = 0; b < 4; ++b) s.p[b] = state.x[dofs_[k][3 * n + b]];
+    gather_element(k, state, s);
     try {
       navier_stokes_element(kind_, fluid_, s, R, &K);
     } catch (const NumericalError& e) {
@@ -88,6 +92,26 @@ void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
     out.add_internal(dofs_[k], R);
     out.add_tangent(local_[k], K);
   }
+}
+
+void NavierStokesTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  // On the current geometry: V = ∫dV, E_k = ½ρ∫|v|² dV.
+  const int order = mesh_.order();
+  FluidElementState s;
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+  double volume = 0.0, kinetic = 0.0;
+  for (size_t k = 0; k < elements_.size(); ++k) {
+    gather_element(k, state, s);
+    for (const auto& q : tet_rule(2 * order + 2 * (order - 1))) {
+      tet_shape(order, q.bary, N, dN);
+      const double dV = q.weight * (s.x * dN.transpose()).determinant();
+      volume += dV;
+      kinetic += 0.5 * fluid_.density * dV * (s.v * N).squaredNorm();
+    }
+  }
+  out.push_back({"fluid_volume", volume});
+  out.push_back({"fluid_kinetic_energy", kinetic});
 }
 
 }  // namespace fe2

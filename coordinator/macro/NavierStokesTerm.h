@@ -21,8 +21,12 @@ class NavierStokesTerm final : public MacroTerm {
   /// P_ref ∫ |∂N_a/∂x_i| dV per velocity DOF: the momentum residual's floor.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// fluid_volume (current) and fluid_kinetic_energy ½ρ∫|v|².
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:
+  /// Element k's geometry and nodal fields at `state` (s's data; its scheme's scalars kept).
+  void gather_element(size_t k, const MacroState& state, FluidElementState& s) const;
   const TetMesh& mesh_;
   std::vector<int> elements_;
   FluidElementKind kind_;

@@ -97,6 +97,11 @@ void put_record(ByteWriter& w, const StepRecord& s) {
   for (const Vec3& x : s.probes) w.put_raw(x.data(), 3 * sizeof(double));
   put_vector(w, s.cavity_pressures);
   put_flows(w, s.circulation);
+  w.put<uint64_t>(s.observables.size());
+  for (const auto& [name, value] : s.observables) {
+    w.put_string(name);
+    w.put(value);
+  }
 }
 
 StepRecord get_record(ByteReader& r) {
@@ -132,6 +137,13 @@ StepRecord get_record(ByteReader& r) {
   for (Vec3& x : s.probes) r.get_raw(x.data(), 3 * sizeof(double));
   s.cavity_pressures = r.get_array<double>();
   s.circulation = get_flows(r);
+  const auto observables = r.get<uint64_t>();
+  if (observables > r.remaining())
+    throw InputError(fmt::format("{}: {} observables cannot fit in the bytes left", r.what(), observables));
+  for (uint64_t k = 0; k < observables; ++k) {
+    std::string name = r.get_string();
+    s.observables.emplace_back(std::move(name), r.get<double>());
+  }
   return s;
 }
 

@@ -242,6 +242,11 @@ json step_entry(const RunSpec& spec, const StepRecord& h) {
     step["cavity_volumes"] = cav;
   }
   if (!h.load_pressures.empty()) step["load_pressures"] = h.load_pressures;
+  if (!h.observables.empty()) {
+    json o = json::object();
+    for (const auto& [name, value] : h.observables) o[name] = value;
+    step["observables"] = o;
+  }
   if (!h.cavity_pressures.empty()) add_step_circulation(*spec.circulation, h, step);
   if (!h.probes.empty()) {
     json at = json::object();

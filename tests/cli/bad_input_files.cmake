@@ -107,3 +107,16 @@ endforeach()
 fe2_cli_test(cli.bad_input.untagged_cell.validate 2
              "mesh file '[^']*untagged_cell[.]msh' line 77: hexahedra of volume entity 1 [(]elements 1..8[)] belong to no physical group"
              ARGS validate ${FE2_CLI_BAD}/untagged_unit.json)
+
+# --- Blood (issue 30): a fluid region that is also wall, a boundary on a set the mesh
+# lacks, an element of the other order: each names the key, the value and what fits.
+fe2_cli_test(cli.bad_input.fluid_region_is_wall 2
+             "/fluid/regions: got [[]\"blood\"[]], expected regions that are not wall [(]region 1 is; set /mesh/wall_regions"
+             ARGS validate ${FE2_CLI_BAD}/fluid_region_is_wall.json)
+fe2_cli_test(cli.bad_input.fluid_unknown_set 2
+             "/fluid/boundaries/4/set: got \"outlett\", expected a named boundary face set of the mesh [(].*outlet.*[)]; did you mean \"outlet\"[?]"
+             ABSENT ${FE2_CLI_OUT}/fluid_unknown_set
+             ARGS run ${FE2_CLI_BAD}/fluid_unknown_set.json --out ${FE2_CLI_OUT}/fluid_unknown_set)
+fe2_cli_test(cli.bad_input.fluid_element_of_other_order 2
+             "/fluid/element: got \"p1p1\", expected the element of the mesh's order [(]quadratic[)]: \"taylor_hood\" or \"auto\""
+             ARGS validate ${FE2_CLI_BAD}/fluid_element_of_other_order.json)

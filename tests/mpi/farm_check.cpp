@@ -1,6 +1,8 @@
 // Checks on the output folders of task-farm runs, for the mpi tests:
 //   farm_check compare REF OUT TOL [MIN_MIGRATIONS]   probe positions agree to TOL times the
-//                                                     largest probe displacement (0: bit for bit)
+//                                                     largest probe displacement (0: bit for bit),
+//                                                     each step's observables to TOL times the
+//                                                     largest |value| of each
 //   farm_check imbalance DIR below|above X            imbalance after the first rebalance
 //   farm_check at_least DIR POINTER MIN               summary.json's number at a JSON pointer
 //                                                     (e.g. /factor_memory/evictions) >= MIN
@@ -72,6 +74,33 @@ double displacement_scale(const json& summary, const json& spec, const std::stri
   }
   return m;
 }
+/// Every step's observables (history[].observables: fluid fluxes, energies, ...): the
+/// largest difference relative to the largest |value| of each name over the reference's
+/// steps. −1 when the runs have none.
+double compare_observables(const json& ref, const json& out, bool& same_shape) {
+  const json &a = ref["history"], &b = out["history"];
+  if (a.empty() || !a[0].contains("observables")) return -1.0;
+  if (a.size() != b.size()) {
+    same_shape = false;
+    return INFINITY;
+  }
+  double d = 0.0;
+  for (auto it = a[0]["observables"].begin(); it != a[0]["observables"].end(); ++it) {
+    double scale = 0.0;
+    for (const json& h : a) scale = std::max(scale, std::abs(h["observables"][it.key()].get<double>()));
+    for (size_t s = 0; s < a.size(); ++s) {
+      if (!b[s].contains("observables") || !b[s]["observables"].contains(it.key())) {
+        std::cerr << "history/" << s << " lacks observable " << it.key() << "\n";
+        same_shape = false;
+        return INFINITY;
+      }
+      d = std::max(d, compare(a[s]["observables"][it.key()], b[s]["observables"][it.key()],
+                              "history/" + std::to_string(s) + "/observables/" + it.key(), scale, same_shape));
+    }
+  }
+  return d;
+}
+
 /// A coupled run's pressure–volume loop: the largest difference over the steps of every
 /// cavity volume and circulation pressure, relative to the largest volume (pressure) of
 /// the reference. −1 when the runs have no cavities.
@@ -108,8 +137,10 @@ int main(int argc, char** argv) {
     const int min_migrations = argc > 5 ? std::stoi(argv[5]) : 0;
     bool ok = ref["converged"].get<bool>() && out["converged"].get<bool>();
     bool shape = true;
-    const double scale = displacement_scale(ref, read(std::string(argv[2]) + "/spec.json"), argv[2]);
-    const double d_probes = compare(ref["probes"], out["probes"], "probes", scale, shape);
+    // A scene without probes (a fluid alone) is compared by its observables.
+    const bool probes = ref.contains("probes") && !ref["probes"].empty();
+    const double scale = probes ? displacement_scale(ref, read(std::string(argv[2]) + "/spec.json"), argv[2]) : 1.0;
+    const double d_probes = probes ? compare(ref["probes"], out["probes"], "probes", scale, shape) : 0.0;
     const bool same_iterations = ref["newton_iterations"] == out["newton_iterations"];
     const fe2::TraceSummary t = fe2::summarize(fe2::read_traces(argv[3]));
     std::printf("probes: max difference %.3e of the largest probe displacement %.3e (tolerance "
@@ -125,7 +156,15 @@ int main(int argc, char** argv) {
     if (d_pv >= 0)
       std::printf("pressure-volume loop: max difference %.3e of the largest volume / pressure (tolerance %.1e)\n",
                   d_pv, tol);
-    ok = ok && shape && d_probes <= tol && d_pv <= tol && same_iterations && t.migrations >= min_migrations;
+    const double d_obs = compare_observables(ref, out, shape);
+    if (d_obs >= 0)
+      std::printf("observables: max difference %.3e of each one's largest |value| (tolerance %.1e)\n", d_obs, tol);
+    if (!probes && d_obs < 0) {
+      std::cerr << "the runs have neither probes nor observables to compare\n";
+      return 2;
+    }
+    ok = ok && shape && d_probes <= tol && d_pv <= tol && d_obs <= tol && same_iterations &&
+         t.migrations >= min_migrations;
     std::printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
   }
