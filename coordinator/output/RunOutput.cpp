@@ -353,6 +353,9 @@ void add_macro_figures(const Simulation& sim, json& s) {
   s["element_order"] = sim.spec().mesh.order();
   s["formulation"] = sim.spec().formulation.mixed ? "mixed" : "displacement";
   s["macro_unknowns"] = sim.system().num_free();
+  json by_field = json::object();  // DOFs per field (prescribed ones included)
+  for (const Field& f : sim.system().fields()) by_field[f.name()] = f.size();
+  s["macro_field_dofs"] = by_field;
   s["macro_ordering"] = sim.macro_ordering();
   const MacroSolver::Stats& ms = sim.macro_solver_stats();
   s["macro_solver"] = {{"refresh", sim.spec().macro_solver.refresh == MacroSolverOptions::Refresh::adaptive

@@ -38,6 +38,8 @@ import sys
 
 import gmsh
 
+from msh_output import raise_to_quadratic, write_physical_groups
+
 BASE_Z = 5.0
 # (centre x, semi-axis x, semi-axis y, semi-axis z); all centred at y = z = 0.
 LV_ENDO = (0.0, 7.0, 7.0, 17.0)
@@ -144,26 +146,14 @@ def main():
             gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
         gmsh.model.mesh.generate(3)
         if args.order == 2:
-            # Curved edge nodes can fold a thin element (the septum) inside out: untangle
-            # them (elastic analogy, then optimization of the scaled Jacobians).
-            gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-            gmsh.model.mesh.setOrder(2)
-            gmsh.model.mesh.optimize("HighOrder")
+            raise_to_quadratic()  # the septum is the thin element that could fold
         groups = {}
         for dim, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
             groups.setdefault(classify(tag), []).append(tag)
         for needed in ("lv_endo", "rv_endo", "epi", "base"):
             if needed not in groups:
                 sys.exit(f"biv_mesh.py: no surface classified as {needed}; check the ellipsoids")
-        for name in sorted(groups):
-            gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, groups[name]), name)
-        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [volume]), "myocardium")
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        gmsh.option.setNumber("Mesh.Binary", 0)
-        gmsh.option.setNumber("Mesh.SaveAll", 0)  # only the physical groups
-        gmsh.write(args.output)
-        print(f"{args.output}: order {args.order}, {len(gmsh.model.mesh.getNodes()[0])} nodes, "
-              f"surfaces {', '.join(f'{n} ({len(t)})' for n, t in sorted(groups.items()))}")
+        write_physical_groups(args.output, args.order, groups, [("myocardium", [volume], -1)])
     finally:
         gmsh.finalize()
 

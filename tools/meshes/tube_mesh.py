@@ -21,6 +21,8 @@ import sys
 
 import gmsh
 
+from msh_output import raise_to_quadratic, write_physical_groups
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -76,19 +78,8 @@ def main():
         gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * args.size)
         gmsh.model.mesh.generate(3)
         if args.order == 2:
-            gmsh.option.setNumber("Mesh.HighOrderOptimize", 2)
-            gmsh.model.mesh.setOrder(2)
-            gmsh.model.mesh.optimize("HighOrder")
-        for name in sorted(groups):
-            gmsh.model.setPhysicalName(2, gmsh.model.addPhysicalGroup(2, groups[name]), name)
-        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [blood], 1), "blood")
-        gmsh.model.setPhysicalName(3, gmsh.model.addPhysicalGroup(3, [wall], 2), "wall")
-        gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-        gmsh.option.setNumber("Mesh.Binary", 0)
-        gmsh.option.setNumber("Mesh.SaveAll", 0)  # only the physical groups
-        gmsh.write(args.output)
-        print(f"{args.output}: order {args.order}, {len(gmsh.model.mesh.getNodes()[0])} nodes, "
-              f"surfaces {', '.join(f'{n} ({len(t)})' for n, t in sorted(groups.items()))}")
+            raise_to_quadratic()
+        write_physical_groups(args.output, args.order, groups, [("blood", [blood], 1), ("wall", [wall], 2)])
     finally:
         gmsh.finalize()
 
