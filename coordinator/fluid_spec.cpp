@@ -66,7 +66,12 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
   for (SpecNode& b : node.children("boundaries")) {
     const std::string kind = b.choice("kind");
     const std::string set = b.string("set");
-    if (kind == "no_slip" || kind == "velocity") {
+    if (kind == "moving_wall") {
+      check_set(b, spec.mesh.node_sets, set, "a named node set, face or interface of the mesh");
+      if (!node.has("mesh_motion"))
+        b.fail("kind", "no_slip (a moving_wall needs /fluid/mesh_motion: the wall's velocity is the mesh's)");
+      s.boundaries.push_back(FluidBoundary::moving_wall(set));
+    } else if (kind == "no_slip" || kind == "velocity") {
       check_set(b, spec.mesh.node_sets, set, "a named node set or face of the mesh");
       const std::array<bool, 3> comps = components_of(b);
       if (kind == "no_slip") {

@@ -20,8 +20,9 @@ Schema components() {
 Schema boundary() {
   return object(
       true, "a boundary condition of the fluid on a node set (velocities) or face set (pressure, flux)",
-      {{"kind", choice(nullopt, {"no_slip", "velocity", "pressure", "flux"},
-                       "no_slip: v = 0; velocity: v prescribed; pressure: traction −P n on an open "
+      {{"kind", choice(nullopt, {"no_slip", "velocity", "moving_wall", "pressure", "flux"},
+                       "no_slip: v = 0; velocity: v prescribed; moving_wall: v = the mesh velocity (no-slip "
+                       "on a wall the mesh follows; needs mesh_motion); pressure: traction −P n on an open "
                        "boundary; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure")}},
       "kind",
       {{"no_slip", {{"set", set_key("named node set (or face)")}, {"components", components()}}},
@@ -30,6 +31,7 @@ Schema boundary() {
          {"components", components()},
          {"value", numbers(3, nullopt, "velocity at t_end (length/s)")},
          {"ramp", ramp_schema()}}},
+       {"moving_wall", {{"set", set_key("named node set, face or interface (the wall the blood touches)")}}},
        {"pressure",
         {{"set", set_key("named boundary face set of the fluid")},
          {"value", number(nullopt, Range::any(), "pressure P at t_end (Pa)")},

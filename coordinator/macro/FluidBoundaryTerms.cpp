@@ -165,6 +165,49 @@ void FluxConstraintTerm::observe(const MacroState& state, std::vector<Observable
   }
 }
 
+// --- moving walls
+
+MovingWallTerm::MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes)
+    : owns_globals_(partition.owns_globals()), nodes_(std::move(nodes)) {}
+
+void MovingWallTerm::declare(MacroSystem& system) {
+  lambda_ = &system.field("fluid_wall_multiplier");
+  v_ = &system.field("fluid_velocity");
+  d_ = &system.field("mesh_displacement");
+  if (!owns_globals_) return;
+  for (size_t k = 0; k < nodes_.size(); ++k) {
+    std::vector<int> dofs;
+    for (int i = 0; i < 3; ++i) dofs.push_back(v_->node_dof(nodes_[k], i));
+    for (int i = 0; i < 3; ++i) dofs.push_back(lambda_->global_dof(static_cast<int>(3 * k) + i));
+    for (int i = 0; i < 3; ++i) dofs.push_back(d_->node_dof(nodes_[k], i));
+    dofs_.push_back(dofs);
+    // Rows v and λ; columns v, λ and d.
+    local_.push_back(system.declare_local(std::vector<int>(dofs.begin(), dofs.begin() + 6), dofs));
+  }
+}
+
+void MovingWallTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
+  if (field.id() == lambda_->id() && owns_globals_) scale.setOnes();
+}
+
+void MovingWallTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  const double c0 = state.rate(*d_).dv_dx;  // ∂ḋ/∂d
+  for (size_t k = 0; k < dofs_.size(); ++k) {
+    const std::vector<int>& dofs = dofs_[k];
+    Eigen::VectorXd R(6);
+    for (int i = 0; i < 3; ++i) {
+      R[i] = state.x[dofs[3 + i]];                          // λ on the v row
+      R[3 + i] = state.x[dofs[i]] - state.v[dofs[6 + i]];  // v − ḋ
+    }
+    out.add_internal(std::vector<int>(dofs.begin(), dofs.begin() + 6), R);
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6, 9);
+    K.block<3, 3>(0, 3).setIdentity();
+    K.block<3, 3>(3, 0).setIdentity();
+    K.block<3, 3>(3, 6) = -c0 * Mat3::Identity();
+    out.add_tangent(local_[k], K);
+  }
+}
+
 // --- the pressure level of an enclosed fluid
 
 PressureLevelTerm::PressureLevelTerm(const TetMesh& mesh, std::vector<int> elements)

@@ -6,6 +6,11 @@
 //                          R_v,a += λ_k ∫N_a n da,   R_λk = Σ_a (v_a − v̂_a)·∫N_a n da − Q_k(t)
 //                        (a symmetric saddle block; λ_k is the face's pressure)
 //   PressureLevelTerm    ∫ p dV = 0 by a multiplier μ: R_p,b += μ ∫N_b, R_μ = ∫ p dV
+//   MovingWallTerm       v_a = v̂_a = ḋ_a at wall nodes by multipliers λ_a:
+//                          R_v,a += λ_a,   R_λa = v_a − ḋ_a   (∂ḋ/∂d by the scheme)
+//                        the wall's motion is given (a prescribed or one-way wall): the
+//                        multiplier does not act back on d (the coupled problem, issue 31,
+//                        shares the unknowns instead)
 // The current face geometry is x = X + d (mesh_displacement, when the scene has one).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/macro/MacroPartition.h"
@@ -78,6 +83,25 @@ class FluxConstraintTerm final : public MacroTerm {
   std::vector<FluidFace> faces_;
   const Field *v_ = nullptr, *d_ = nullptr, *lambda_ = nullptr;
   std::vector<std::vector<int>> dofs_;  ///< per face: velocity DOFs, then λ
+  std::vector<int> local_;
+};
+
+class MovingWallTerm final : public MacroTerm {
+ public:
+  /// `nodes`: fluid_scene.h's moving_wall_nodes, in the multiplier field's order; the
+  /// first coordinator assembles them all (a handful of rows each).
+  MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes);
+  std::string name() const override { return "fluid moving wall"; }
+  void declare(MacroSystem& system) override;
+  /// 1 per multiplier (the measure is |v − v̂| in velocity units).
+  void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
+  void assemble(const MacroState& state, MacroAssembly& out) override;
+
+ private:
+  bool owns_globals_;
+  std::vector<int> nodes_;
+  const Field *lambda_ = nullptr, *v_ = nullptr, *d_ = nullptr;
+  std::vector<std::vector<int>> dofs_;  ///< per node: v (3), λ (3), d (3)
   std::vector<int> local_;
 };
 

@@ -17,7 +17,9 @@ namespace fe2 {
 enum class MeshMotionKind { harmonic, elastic };
 
 struct FluidBoundary {
-  enum class Kind { velocity, pressure, flux };
+  /// moving_wall: v = v̂ (the mesh velocity) on the set's nodes, by multipliers: no-slip
+  /// on a wall that moves with the mesh (nodes under a velocity condition keep that).
+  enum class Kind { velocity, pressure, flux, moving_wall };
   Kind kind = Kind::velocity;
   std::string set;   ///< a node set (velocity) or a face set (pressure, flux)
   /// velocity: the prescribed value at reference point X and time t; components[i]
@@ -47,6 +49,12 @@ struct FluidBoundary {
     b.set = std::move(set);
     b.value = std::move(P);
     b.backflow = backflow;
+    return b;
+  }
+  static FluidBoundary moving_wall(std::string set) {
+    FluidBoundary b;
+    b.kind = Kind::moving_wall;
+    b.set = std::move(set);
     return b;
   }
   static FluidBoundary flux(std::string set, ScalarValue Q) {

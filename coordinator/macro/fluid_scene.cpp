@@ -34,13 +34,33 @@ void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
       if (!mesh.node_sets.count(b.set))
         throw InputError(fmt::format("fluid mesh motion boundary: the mesh has no node set '{}'", b.set));
   for (const FluidBoundary& b : setup.boundaries) {
-    const bool on_faces = b.kind != FluidBoundary::Kind::velocity;
+    if (b.kind == FluidBoundary::Kind::moving_wall && !setup.mesh_motion)
+      throw InputError(fmt::format("fluid boundary 'moving_wall' on '{}': needs a mesh motion (the wall's velocity "
+                                   "is the mesh's); without one use 'no_slip'",
+                                   b.set));
+    const bool on_faces = b.kind == FluidBoundary::Kind::pressure || b.kind == FluidBoundary::Kind::flux;
     if (on_faces ? !mesh.faces.count(b.set) : !mesh.node_sets.count(b.set))
       throw InputError(fmt::format("fluid boundary: the mesh has no {} '{}'", on_faces ? "face set" : "node set", b.set));
   }
 }
 
 }  // namespace
+
+std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup) {
+  std::vector<char> fluid(static_cast<size_t>(mesh.num_nodes()), 0), taken(fluid.size(), 0), wall(fluid.size(), 0);
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
+      for (int a : mesh.element_nodes(e)) fluid[static_cast<size_t>(a)] = 1;
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (b.kind != FluidBoundary::Kind::velocity && b.kind != FluidBoundary::Kind::moving_wall) continue;
+    auto& mark = b.kind == FluidBoundary::Kind::velocity ? taken : wall;
+    for (int a : mesh.node_sets.at(b.set)) mark[static_cast<size_t>(a)] = 1;
+  }
+  std::vector<int> nodes;
+  for (int a = 0; a < mesh.num_nodes(); ++a)
+    if (wall[static_cast<size_t>(a)] && fluid[static_cast<size_t>(a)] && !taken[static_cast<size_t>(a)]) nodes.push_back(a);
+  return nodes;
+}
 
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   check_setup(mesh, setup);
@@ -52,6 +72,9 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   const int fluxes = static_cast<int>(setup.flux_boundaries().size());
   if (fluxes > 0)
     ext.fields.push_back({"fluid_flux_pressure", 1, FieldSpace::global, {}, fluxes, TimeScheme::none,
+                          ResidualNorm::scaled_max, setup.rtol});
+  if (const int walls = static_cast<int>(moving_wall_nodes(mesh, setup).size()); walls > 0)
+    ext.fields.push_back({"fluid_wall_multiplier", 1, FieldSpace::global, {}, 3 * walls, TimeScheme::none,
                           ResidualNorm::scaled_max, setup.rtol});
   if (setup.mesh_motion)
     ext.fields.push_back({"mesh_displacement", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
@@ -111,6 +134,8 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   if (!open.empty()) terms.push_back(std::make_unique<OpenBoundaryTerm>(mesh, partition, setup.regions, open, setup.fluid.density));
   if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));
   if (setup.enclosed()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
+  if (std::vector<int> walls = moving_wall_nodes(mesh, setup); !walls.empty())
+    terms.push_back(std::make_unique<MovingWallTerm>(partition, std::move(walls)));
   if (setup.mesh_motion)
     terms.push_back(std::make_unique<MeshMotionTerm>(mesh, elements, setup.mesh_motion->kind,
                                                      setup.mesh_motion->stiffening));

@@ -10,6 +10,7 @@
 //   fluid_pressure          vertex (P1)     none          ‖R‖/‖∫N_p‖: the mean |div v| left
 //   fluid_flux_pressure     global, 1/flux face            max |Q_h − Q| / area: a mean normal velocity
 //   fluid_pressure_level    global, 1       none          |∫p|/V: the mean pressure (enclosed fluid)
+//   fluid_wall_multiplier   global, 3/node  none          max |v − v̂| on moving walls (velocity units)
 //   mesh_displacement       nodal, when the mesh moves: the ALE map x = X + d, v̂ = ḋ by
 //                           the fluid's time scheme (MeshMotionTerm.h)
 //
@@ -19,6 +20,8 @@
 //              stabilization β (common/fluid/fluid_boundary.h)
 //   flux       ∫(v − v̂)·n da = Q(t), its multiplier λ the face's pressure (a traction
 //              −λ n): the form the valve rings take against a circulation model
+//   moving_wall v = v̂ at the set's nodes (those not under a velocity condition), by a
+//              multiplier per node and component: the force the wall exerts on the blood
 // Enclosed fluid (no pressure face): the pressure is fixed by ∫p dV = 0 through a
 // Lagrange multiplier (fluid_pressure_level), never by pinning a node, so the answer
 // does not depend on the numbering; a flux face does not fix it (its multiplier moves
@@ -37,6 +40,10 @@ namespace fe2 {
 /// Throws fe2::InputError naming the set when a boundary names a set the mesh lacks
 /// or the element does not match the mesh's order (Taylor–Hood: quadratic; P1/P1: linear).
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup);
+
+/// The fluid's nodes of its moving_wall sets that no velocity condition prescribes,
+/// ascending: the nodes where v = v̂ is imposed.
+std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup);
 
 /// The fluid's terms over `partition`'s elements of its regions and their faces.
 std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
