@@ -25,3 +25,18 @@ def write_physical_groups(output, order, surfaces, volumes):
     gmsh.write(output)
     print(f"{output}: order {order}, {len(gmsh.model.mesh.getNodes()[0])} nodes, "
           f"surfaces {', '.join(f'{n} ({len(t)})' for n, t in sorted(surfaces.items()))}")
+
+
+def mesh_and_write(script, output, order, size, surfaces, needed, volumes):
+    """Checks every `needed` surface group was found (exits naming the first missing),
+    meshes with sizes in [0.3 size, size], raises to `order` and writes (above)."""
+    import sys
+    for name in needed:
+        if name not in surfaces:
+            sys.exit(f"{script}: no surface classified as {name}")
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+    gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * size)
+    gmsh.model.mesh.generate(3)
+    if order == 2:
+        raise_to_quadratic()
+    write_physical_groups(output, order, surfaces, volumes)

@@ -21,7 +21,7 @@ import sys
 
 import gmsh
 
-from msh_output import raise_to_quadratic, write_physical_groups
+from msh_output import mesh_and_write
 
 
 def main():
@@ -71,15 +71,9 @@ def main():
                 end = "inlet" if z1 < eps else "outlet"
                 name = end if in_blood else f"wall_{end}"
             groups.setdefault(name, []).append(tag)
-        for needed in ("lumen", "outer", "inlet", "outlet", "wall_inlet", "wall_outlet"):
-            if needed not in groups:
-                sys.exit(f"tube_mesh.py: no surface classified as {needed}")
-        gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * args.size)
-        gmsh.model.mesh.generate(3)
-        if args.order == 2:
-            raise_to_quadratic()
-        write_physical_groups(args.output, args.order, groups, [("blood", [blood], 1), ("wall", [wall], 2)])
+        mesh_and_write("tube_mesh.py", args.output, args.order, args.size, groups,
+                       ("lumen", "outer", "inlet", "outlet", "wall_inlet", "wall_outlet"),
+                       [("blood", [blood], 1), ("wall", [wall], 2)])
     finally:
         gmsh.finalize()
 
