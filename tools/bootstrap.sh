@@ -32,6 +32,8 @@ werror=OFF
 [[ $mode == test ]] && werror=ON
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+# Paths relative to the checkout in ccache's keys: a clone elsewhere reuses the cache.
+export CCACHE_BASEDIR="$top"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFE2_WERROR=$werror "${launcher[@]}" >/dev/null
 cmake --build build -j"$jobs"
 

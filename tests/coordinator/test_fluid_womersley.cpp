@@ -46,7 +46,8 @@ struct Womersley {
   }
 };
 
-TEST(HardFluidWomersley, OscillatingPipeFlowHasTheBesselSolutionsAmplitudeAndPhase) {
+// 23 s on one core: label long (`ctest -L long -R Womersley`), outside CI's budget.
+TEST(LongFluidWomersley, OscillatingPipeFlowHasTheBesselSolutionsAmplitudeAndPhase) {
   const Womersley w;
   const int steps = 40;
   const json j = {
