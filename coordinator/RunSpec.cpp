@@ -134,9 +134,17 @@ int region_tag(const RunSpec& spec, const std::string& where, const std::string&
                                spec.mesh_source, known_names("one of its regions", name, known)));
 }
 
-/// mesh.wall_regions: tags or names, each once; absent: every region is wall.
+/// mesh.wall_regions: tags or names, each once; absent: every region is wall. A named
+/// interface between the wall and another region (an endocardium with blood on its
+/// other side) is a surface of the wall too: a face set of its name, oriented out of the
+/// wall, for loads, cavities, excitation and fibres.
 void read_wall_regions(SpecNode& m, RunSpec& spec) {
   if (m.has("wall_regions")) spec.wall_regions = read_region_list(m, "wall_regions", spec);
+  if (spec.wall_regions.empty()) return;
+  for (const auto& [name, tris] : spec.mesh.interfaces)
+    if (!spec.mesh.faces.count(name))
+      if (auto wall_side = oriented_from(spec.mesh, tris, [&spec](int e) { return spec.is_wall(e); }))
+        spec.mesh.faces[name] = std::move(*wall_side);
 }
 
 /// A Dirichlet set holds the wall where it meets it (a base plane may cross a cavity

@@ -3,6 +3,8 @@
 #include "common/error.h"
 #include "coordinator/RunSpec.h"
 
+#include <algorithm>
+
 namespace fe2 {
 
 namespace {
@@ -51,10 +53,12 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
   const int order = spec.mesh.order();
   if (element == "auto") s.element = order == 2 ? FluidElementKind::taylor_hood : FluidElementKind::stabilized_p1p1;
   else if (element == "taylor_hood") s.element = FluidElementKind::taylor_hood;
+  else if (element == "taylor_hood_supg") s.element = FluidElementKind::taylor_hood_supg;
   else s.element = FluidElementKind::stabilized_p1p1;
-  if ((s.element == FluidElementKind::taylor_hood) != (order == 2))
+  if (fluid_velocity_order(s.element) != order)
     node.fail("element", fmt::format("the element of the mesh's order ({}): {}", order == 2 ? "quadratic" : "linear",
-                                     order == 2 ? "\"taylor_hood\" or \"auto\"" : "\"p1p1\" or \"auto\""));
+                                     order == 2 ? "\"taylor_hood\", \"taylor_hood_supg\" or \"auto\""
+                                                : "\"p1p1\" or \"auto\""));
   const std::string time = node.choice("time");
   s.time = time == "bdf2" ? TimeScheme::bdf2 : time == "bdf1" ? TimeScheme::backward_euler : TimeScheme::none;
   s.body_force = vec3_of(node.numbers("body_force"));
@@ -89,6 +93,14 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
       if (kind == "pressure") {
         auto P = ramped(b, spec);
         s.boundaries.push_back(FluidBoundary::pressure(set, P, b.number("backflow")));
+      } else if (kind == "valve") {
+        const std::string cavity = b.string("cavity");
+        if (!spec.circulation) b.fail("kind", "flux or pressure (a valve ring needs /circulation: its flow)");
+        const auto& names = spec.circulation->cavity_names();
+        const auto it = std::find(names.begin(), names.end(), cavity);
+        if (it == names.end()) b.fail("cavity", known_names("a cavity of the circulation", cavity, names));
+        s.boundaries.push_back(FluidBoundary::valve_flux(
+            set, {static_cast<int>(it - names.begin()), b.choice("side") == "outflow"}));
       } else {
         s.boundaries.push_back(FluidBoundary::flux(set, ramped(b, spec)));
       }

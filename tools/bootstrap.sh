@@ -32,8 +32,10 @@ werror=OFF
 [[ $mode == test ]] && werror=ON
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-# Paths relative to the checkout in ccache's keys: a clone elsewhere reuses the cache.
+# Paths relative to the checkout in ccache's keys: a clone elsewhere reuses the cache;
+# the precompiled headers (CMakeLists.txt, FE2_PCH) are cacheable only with this sloppiness.
 export CCACHE_BASEDIR="$top"
+export CCACHE_SLOPPINESS=pch_defines,time_macros,include_file_mtime,include_file_ctime
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFE2_WERROR=$werror "${launcher[@]}" >/dev/null
 cmake --build build -j"$jobs"
 

@@ -78,7 +78,7 @@ CellModelPtr make_constant(SpecNode& node) {
 
 CellModelPtr make_table(SpecNode& node) {
   const json* v = node.declared_value("table");
-  const std::string expected = std::string("an ") + kTableType + " (" + kTableHelp + ")";
+  const std::string expected = fmt::format("an {} ({})", kTableType, kTableHelp);
   if (!v || !v->is_array() || v->empty()) node.fail("table", expected);
   std::vector<std::pair<double, double>> table;
   for (size_t i = 0; i < v->size(); ++i) {

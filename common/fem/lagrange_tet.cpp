@@ -3,6 +3,8 @@
 #include "common/error.h"
 #include "common/mesh/TetMesh.h"
 
+#include <array>
+
 namespace fe2 {
 
 namespace {
@@ -31,6 +33,38 @@ void tet_shape(int order, const Vec4& l, Eigen::VectorXd& N, Eigen::Matrix<doubl
     N[4 + k] = 4 * l[a] * l[b];
     dN.col(4 + k) = 4 * (l[b] * dlambda_tet(a) + l[a] * dlambda_tet(b));
   }
+}
+
+std::vector<Mat3> tet_shape_hessians(int order) {
+  FE2_CHECK(order == 1 || order == 2, "tet order {} (expected 1 or 2)", order);
+  std::vector<Mat3> H(static_cast<size_t>(tet_nodes(order)), Mat3::Zero());
+  if (order == 1) return H;
+  for (int a = 0; a < 4; ++a) H[static_cast<size_t>(a)] = 4.0 * dlambda_tet(a) * dlambda_tet(a).transpose();
+  for (int k = 0; k < 6; ++k) {
+    const auto [a, b] = kTetEdges[k];
+    const Mat3 ab = dlambda_tet(a) * dlambda_tet(b).transpose();
+    H[static_cast<size_t>(4 + k)] = 4.0 * (ab + ab.transpose());
+  }
+  return H;
+}
+
+Eigen::VectorXd tet_shape_laplacians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
+                                     const Eigen::Matrix3Xd& gN) {
+  const Eigen::Index n = x.cols();
+  if (order == 1) return Eigen::VectorXd::Zero(n);
+  static const std::vector<Mat3> H = tet_shape_hessians(2);
+  std::array<Mat3, 3> Hx;  // ∂²x_k/∂ξ∂ξ
+  for (int k = 0; k < 3; ++k) {
+    Hx[k].setZero();
+    for (Eigen::Index c = 0; c < n; ++c) Hx[k] += x(k, c) * H[static_cast<size_t>(c)];
+  }
+  Eigen::VectorXd lap(n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    Mat3 h = H[static_cast<size_t>(a)];
+    for (int k = 0; k < 3; ++k) h -= gN(k, a) * Hx[k];
+    lap[a] = (Jinv.transpose() * h * Jinv).trace();
+  }
+  return lap;
 }
 
 void triangle_shape(int order, const Vec3& l, Eigen::VectorXd& N, Eigen::Matrix<double, 2, Eigen::Dynamic>& dN) {

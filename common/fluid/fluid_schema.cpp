@@ -20,10 +20,11 @@ Schema components() {
 Schema boundary() {
   return object(
       true, "a boundary condition of the fluid on a node set (velocities) or face set (pressure, flux)",
-      {{"kind", choice(nullopt, {"no_slip", "velocity", "moving_wall", "pressure", "flux"},
+      {{"kind", choice(nullopt, {"no_slip", "velocity", "moving_wall", "pressure", "flux", "valve"},
                        "no_slip: v = 0; velocity: v prescribed; moving_wall: v = the mesh velocity (no-slip "
                        "on a wall the mesh follows; needs mesh_motion); pressure: traction −P n on an open "
-                       "boundary; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure")}},
+                       "boundary; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure; valve: a "
+                       "flux face whose Q is the circulation's flow through a cavity's valve")}},
       "kind",
       {{"no_slip", {{"set", set_key("named node set (or face)")}, {"components", components()}}},
        {"velocity",
@@ -43,7 +44,13 @@ Schema boundary() {
        {"flux",
         {{"set", set_key("named boundary face set of the fluid")},
          {"value", number(nullopt, Range::any(), "flux Q at t_end, out of the fluid (volume/s)")},
-         {"ramp", ramp_schema()}}}});
+         {"ramp", ramp_schema()}}},
+       {"valve",
+        {{"set", set_key("named boundary face set of the fluid: the valve's ring")},
+         {"cavity", string(nullopt, "the circulation's cavity whose valve this ring is")},
+         {"side", choice(nullopt, {"inflow", "outflow"},
+                         "inflow: the cavity's inflow valve (mitral), blood enters; outflow: its outflow "
+                         "valve (aortic), blood leaves")}}}});
 }
 
 Schema mesh_motion() {
@@ -78,8 +85,10 @@ Schema fluid_schema() {
                           "ρ in units consistent with the mesh's lengths, seconds and Pa: blood 1.06e-3 with "
                           "lengths in mm (1060 kg/m³), 1060 with lengths in m")},
        {"viscosity", number(nullopt, Range::positive(), "dynamic viscosity μ (Pa s): blood about 3.5e-3")},
-       {"element", choice("auto", {"auto", "taylor_hood", "p1p1"},
-                          "taylor_hood: P2/P1 (quadratic meshes); p1p1: SUPG/PSPG/LSIC-stabilized P1/P1 "
+       {"element", choice("auto", {"auto", "taylor_hood", "taylor_hood_supg", "p1p1"},
+                          "taylor_hood: P2/P1 (quadratic meshes); taylor_hood_supg: P2/P1 with SUPG/LSIC "
+                          "stabilization (convection-dominated flows: a ventricle); p1p1: "
+                          "SUPG/PSPG/LSIC-stabilized P1/P1 "
                           "(linear meshes); auto: the one of the mesh's order")},
        {"time", choice("bdf2", {"bdf2", "bdf1", "steady"},
                        "∂v/∂t by BDF2 (second order, variable step), BDF1, or none (the steady equations)")},

@@ -16,8 +16,9 @@ StabilizationParameters stabilization_parameters(const Mat3& G, const Vec3& c, d
 
 void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, const FluidElementState& s,
                            Eigen::VectorXd& R, Eigen::MatrixXd* K) {
-  const int order = kind == FluidElementKind::taylor_hood ? 2 : 1;
-  const bool stabilized = kind == FluidElementKind::stabilized_p1p1;
+  const int order = fluid_velocity_order(kind);
+  const bool stabilized = kind != FluidElementKind::taylor_hood;
+  const bool pspg = kind == FluidElementKind::stabilized_p1p1;  // Taylor–Hood is inf–sup stable
   const int n = tet_nodes(order);
   const int nv = 3 * n, ndof = nv + 4;
   FE2_CHECK(s.x.cols() == n && s.v.cols() == n && s.v_rate.cols() == n && s.w.cols() == n,
@@ -25,7 +26,6 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
   const double rho = fluid.density, mu = fluid.viscosity, nu = mu / rho;
   R.setZero(ndof);
   if (K) K->setZero(ndof, ndof);
-
   // Degree: the convective term N_a (c·∇)v is of degree 2k − 1 + k on affine elements.
   static const auto rule_p1 = tet_rule(3), rule_p2 = tet_rule(5);
   const auto& rule = order == 2 ? rule_p2 : rule_p1;
@@ -59,12 +59,16 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
 
     StabilizationParameters tau;
     Vec3 r_M = Vec3::Zero();
+    Eigen::VectorXd lap_N = Eigen::VectorXd::Zero(n);  // ΔN_a (0 for P1)
+    // G of an element of degree k: k² J⁻ᵀJ⁻¹ (its nodes are h/k apart).
+    const Mat3 G = double(order * order) * Jinv.transpose() * Jinv;
     if (stabilized) {
-      tau = stabilization_parameters(Jinv * Jinv.transpose(), c, nu, s.dt);
-      r_M = inertia + grad_p;
+      tau = stabilization_parameters(G, c, nu, s.dt);
+      if (order == 2) lap_N = tet_shape_laplacians(order, s.x, Jinv, gN);
+      r_M = inertia + grad_p - mu * (s.v * lap_N);
       for (int a = 0; a < n; ++a)
         R.segment<3>(3 * a) += dV * (tau.tau_m * c_grad_N[a] * r_M + rho * tau.tau_c * div_v * gN.col(a));
-      R.tail<4>() -= dV * (tau.tau_m / rho) * gM.transpose() * r_M;
+      if (pspg) R.tail<4>() -= dV * (tau.tau_m / rho) * gM.transpose() * r_M;
     }
     if (!K) continue;
 
@@ -87,12 +91,12 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
       }
     if (!stabilized) continue;
 
-    // ∂τ_M/∂v_bj = −τ_M³ (G c)_j N_b (through c), ∂τ_C/∂v = −(τ_C/τ_M) ∂τ_M/∂v.
-    const Mat3 G = Jinv * Jinv.transpose();
+    // ∂τ_M/∂v_bj = −τ_M³ (G c)_j N_b (through c), ∂τ_C/∂v = −(τ_C/τ_M) ∂τ_M/∂v;
+    // ∂r_M/∂v_b = A_b − μ ΔN_b I.
     const Vec3 dtau_dc = -std::pow(tau.tau_m, 3) * (G * c);
     const Vec3 dtauc_dc = -(tau.tau_c / tau.tau_m) * dtau_dc;
     for (int b = 0; b < n; ++b) {
-      const Mat3 A_b = dinertia(b);
+      const Mat3 A_b = dinertia(b) - mu * lap_N[b] * Mat3::Identity();
       for (int a = 0; a < n; ++a) {
         // SUPG: τ_M (c·∇N_a) r_M; LSIC: ρ τ_C ∂_i N_a div v.
         Mat3 k = tau.tau_m * c_grad_N[a] * A_b + tau.tau_m * N[b] * r_M * gN.col(a).transpose() +
@@ -101,7 +105,7 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
         K->block<3, 3>(3 * a, 3 * b) += dV * k;
       }
       // PSPG: −(τ_M/ρ) ∇M_c·r_M
-      for (int m = 0; m < 4; ++m) {
+      for (int m = 0; pspg && m < 4; ++m) {
         const Eigen::RowVector3d row =
             tau.tau_m * gM.col(m).transpose() * A_b + gM.col(m).dot(r_M) * N[b] * dtau_dc.transpose();
         K->block<1, 3>(nv + m, 3 * b) -= dV / rho * row;
@@ -109,7 +113,7 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
     }
     for (int a = 0; a < n; ++a)
       K->block<3, 4>(3 * a, nv) += dV * tau.tau_m * c_grad_N[a] * gM;
-    K->block<4, 4>(nv, nv) -= dV * (tau.tau_m / rho) * gM.transpose() * gM;
+    if (pspg) K->block<4, 4>(nv, nv) -= dV * (tau.tau_m / rho) * gM.transpose() * gM;
   }
 }
 

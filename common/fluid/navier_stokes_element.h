@@ -10,13 +10,18 @@
 // Elements (FluidElementKind):
 //   taylor_hood      P2 velocity / P1 pressure on a quadratic mesh: inf–sup stable, no
 //                    stabilization (Galerkin).
+//   taylor_hood_supg Taylor–Hood with the SUPG and LSIC terms below (no PSPG: the pair
+//                    is inf–sup stable), for convection-dominated flows (a ventricle's
+//                    Re ≈ 10³ on centimetre elements) where Galerkin P2 oscillates
 //   stabilized_p1p1  P1/P1 on a linear mesh with residual-based (SUPG/PSPG/LSIC) terms,
 //                    the stabilization of Tezduyar (1992) and Whiting & Jansen (2001) in
 //                    the notation of Bazilevs et al. (2007, CMAME 197:173), metric tensor
-//                    G = J⁻ᵀJ⁻¹ (∂ξ/∂x of the reference tet):
+//                    G_ij = k² Σ_m ∂ξ_m/∂x_i ∂ξ_m/∂x_j (k the velocity degree: the nodes
+//                    are h/k apart):
 //       τ_M = (C_t/Δt² + c·G c + C_I ν² G:G)^(−1/2)      C_t = 4, C_I = 36, ν = μ/ρ
 //       τ_C = 1/(τ_M tr G)
-//       r_M = ρ(∂v/∂t|_χ + (c·∇)v − f) + ∇p              (μΔv = 0 for P1)
+//       r_M = ρ(∂v/∂t|_χ + (c·∇)v − f) + ∇p − μΔv        (Δv exact on the curved P2
+//                                                          element, 0 for P1: consistent)
 //     SUPG  + ∫ τ_M (c·∇w)·r_M      PSPG  − ∫ (τ_M/ρ) ∇q·r_M      LSIC  + ∫ ρ τ_C div w div v
 //
 // The tangent is consistent in v and p, the τ's dependence on c included (so Newton is
@@ -31,7 +36,10 @@
 
 namespace fe2 {
 
-enum class FluidElementKind { taylor_hood, stabilized_p1p1 };
+enum class FluidElementKind { taylor_hood, taylor_hood_supg, stabilized_p1p1 };
+
+/// The velocity's polynomial degree (and the mesh's order) of an element kind.
+inline int fluid_velocity_order(FluidElementKind kind) { return kind == FluidElementKind::stabilized_p1p1 ? 1 : 2; }
 
 struct NewtonianFluid {
   double density = 0.0;    ///< ρ
@@ -51,7 +59,7 @@ struct FluidElementState {
 };
 
 /// Number of element unknowns: 3 per velocity node, 1 per vertex.
-inline int fluid_element_dofs(FluidElementKind kind) { return kind == FluidElementKind::taylor_hood ? 34 : 16; }
+inline int fluid_element_dofs(FluidElementKind kind) { return fluid_velocity_order(kind) == 2 ? 34 : 16; }
 
 /// The element residual R (fluid_element_dofs) and, if `K` is not null, its tangent
 /// ∂R/∂(v, p). Throws fe2::NumericalError on an inverted or degenerate element.

@@ -235,9 +235,33 @@ std::vector<int> face_elements(const TetMesh& m, const std::vector<std::array<in
     if (it == face_map.end())
       throw InputError(fmt::format("triangle {} (nodes {} {} {}) is not a face of any tetrahedron of the mesh", i,
                                    tris[i][0], tris[i][1], tris[i][2]));
-    tet[i] = it->second.tet[side_of(m, it->second)];
+    const FaceOwners& o = it->second;
+    int side = 0;
+    if (o.count == 2) {  // the tet the triangle's normal points away from
+      const Vec3& x0 = m.nodes[tris[i][0]];
+      const Vec3 normal = (m.nodes[tris[i][1]] - x0).cross(m.nodes[tris[i][2]] - x0);
+      side = normal.dot(m.nodes[o.opposite[0]] - x0) < 0.0 ? 0 : 1;
+    }
+    tet[i] = o.tet[side];
   }
   return tet;
+}
+
+std::optional<std::vector<std::array<int, 3>>> oriented_from(const TetMesh& m, std::vector<std::array<int, 3>> tris,
+                                                             const std::function<bool(int tet)>& side) {
+  const auto face_map = build_face_map(m);
+  for (auto& tri : tris) {
+    const auto it = face_map.find(sorted_key(tri));
+    if (it == face_map.end()) return std::nullopt;
+    const FaceOwners& o = it->second;
+    const int on_side = (o.count > 0 && side(o.tet[0])) + (o.count > 1 && side(o.tet[1]));
+    if (on_side != 1) return std::nullopt;
+    const int k = side(o.tet[0]) ? 0 : 1;
+    const Vec3& x0 = m.nodes[tri[0]];
+    const Vec3 normal = (m.nodes[tri[1]] - x0).cross(m.nodes[tri[2]] - x0);
+    if (normal.dot(m.nodes[o.opposite[k]] - x0) > 0.0) std::swap(tri[1], tri[2]);
+  }
+  return tris;
 }
 
 }  // namespace fe2

@@ -8,7 +8,9 @@
 #include "common/tensor9.h"
 
 #include <array>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -57,9 +59,15 @@ inline constexpr std::array<std::array<int, 2>, 6> kTetEdges = {{{0, 1}, {1, 2},
 void make_quadratic(TetMesh& m);
 
 /// For each triangle of `tris` (a boundary face or an interface of `m`), the tet it
-/// bounds: an interface triangle's tet of the lower region tag (the side its normal
-/// points away from). Throws InputError naming the triangle if it is no face of a tet.
+/// bounds: of an interior triangle the tet its normal points away from (for a named
+/// interface, the one of the lower region tag). Throws InputError naming the triangle if
+/// it is no face of a tet.
 std::vector<int> face_elements(const TetMesh& m, const std::vector<std::array<int, 3>>& tris);
+
+/// `tris` oriented outward from the tet of each that `side` accepts, if every triangle
+/// is a face of exactly one such tet (e.g. an interface seen from the wall); else none.
+std::optional<std::vector<std::array<int, 3>>> oriented_from(const TetMesh& m, std::vector<std::array<int, 3>> tris,
+                                                             const std::function<bool(int tet)>& side);
 
 /// Signed volume of tet e: (x1-x0)·((x2-x0)×(x3-x0))/6.
 double tet_signed_volume(const TetMesh& m, int e);

@@ -53,9 +53,10 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
   std::vector<double> p(n);
   for (int i = 0; i < n; ++i) p[i] = state.x[cavity_dofs_[i]];
   const bool inflating = spec_.inflating(state.time);
-  if (owns_rows_)
-    flows_ = inflating ? circulation_.at_rest(0.0, p, committed_)
-                       : circulation_.step(state.time, state.dt, p, committed_, current_);
+  // Every coordinator advances the (small) circulation, so that its flows and valve
+  // states are known wherever a term reads them (valve rings); the rows are the owner's.
+  flows_ = inflating ? circulation_.at_rest(0.0, p, committed_)
+                     : circulation_.step(state.time, state.dt, p, committed_, current_);
   Eigen::VectorXd f1;
   Eigen::MatrixXd dfdx1;
   std::vector<Vec3> x;
@@ -71,9 +72,16 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
       out.add_tangent(f.local_up, -f1);
       out.add_external(f.dofs, p[i] * f1);
     }
-    if (!owns_rows_ || inflating) continue;
-    // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
+    if (!owns_rows_ && !inflating) continue;
     const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u_->at_every_node(state.x, spec_.mesh.num_nodes()));
+    if (inflating) {
+      // The atrium holds its pressure while the wall inflates: what the cavity takes in
+      // comes through its open inflow valve (blood in the cavity enters by the mitral ring).
+      if (state.dt > 0.0) flows_.Q_in[i] = flows_.Q_net[i] = (v.volume - V_n_[i]) / state.dt;
+      flows_.inflow_open[i] = true;
+      continue;
+    }
+    // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
     Eigen::MatrixXd row(1, static_cast<Eigen::Index>(v.dV_du.size()));
     for (size_t k = 0; k < v.dV_du.size(); ++k) row(0, static_cast<Eigen::Index>(k)) = v.dV_du[k].second;
     out.add_tangent(cav.local_pu, row);

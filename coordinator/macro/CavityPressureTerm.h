@@ -21,7 +21,9 @@
 // ramped from 0 at t_start to the circulation's filling pressure p_fill,c at t = 0:
 //   R_c = (V_c,ref / p_s) (p_c − p_fill,c (t − t_start)/(−t_start)),  p_s = max(p_fill,c, 1 kPa).
 // The circulation's state is unchanged by it; the last committed cavity pressures (the
-// phase's dp) follow the wall.
+// phase's dp) follow the wall. What the cavity takes in meanwhile is reported as its
+// inflow through an open inflow valve (Q_in = Q_net = (V_c − V_c,n)/Δt): the blood a
+// cavity with a fluid receives through its inflow ring.
 //
 // The pressure load on a face is assembled by the coordinator owning the face's tet; the
 // volume rows R_c need the whole surface (and the circulation), so the coordinator owning

@@ -120,6 +120,9 @@ void FluxConstraintTerm::declare(MacroSystem& system) {
     dofs_.push_back(std::move(dofs));
     local_.push_back(system.declare_local(dofs_.back()));
   }
+  if (owns_globals_)
+    for (size_t b = 0; b < boundaries_.size(); ++b)
+      local_shut_.push_back(boundaries_[b].active ? system.declare_local({lambda_->global_dof(static_cast<int>(b))}) : -1);
 }
 
 void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
@@ -132,27 +135,37 @@ void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd&
 }
 
 void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
+  std::vector<char> active(boundaries_.size());
+  for (size_t b = 0; b < boundaries_.size(); ++b) active[b] = !boundaries_[b].active || boundaries_[b].active();
   Eigen::Matrix3Xd x, w;
   for (size_t k = 0; k < faces_.size(); ++k) {
     fluid_face_geometry(mesh_, d_, faces_[k].nodes, state, x, w);
     const Eigen::Matrix3Xd S = face_normal_integrals(mesh_.order(), x);
     const Eigen::Map<const Eigen::VectorXd> s(S.data(), S.size());
     const int nv = static_cast<int>(S.size());
-    const Eigen::VectorXd v = gather(state.x, dofs_[k]).head(nv);
-    const double lambda = state.x[dofs_[k].back()];
-    Eigen::VectorXd R(nv + 1);
-    R.head(nv) = lambda * s;
-    R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
-    out.add_internal(dofs_[k], R);
+    Eigen::VectorXd R = Eigen::VectorXd::Zero(nv + 1);
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(nv + 1, nv + 1);
-    K.col(nv).head(nv) = s;
-    K.row(nv).head(nv) = s.transpose();
+    if (active[static_cast<size_t>(faces_[k].boundary)]) {
+      const Eigen::VectorXd v = gather(state.x, dofs_[k]).head(nv);
+      const double lambda = state.x[dofs_[k].back()];
+      R.head(nv) = lambda * s;
+      R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
+      K.col(nv).head(nv) = s;
+      K.row(nv).head(nv) = s.transpose();
+    }
+    out.add_internal(dofs_[k], R);
     out.add_tangent(local_[k], K);
   }
   if (!owns_globals_) return;
-  for (size_t b = 0; b < boundaries_.size(); ++b)
-    out.add_external({lambda_->global_dof(static_cast<int>(b))},
-                     Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
+  for (size_t b = 0; b < boundaries_.size(); ++b) {
+    const int dof = lambda_->global_dof(static_cast<int>(b));
+    if (active[b]) {
+      out.add_external({dof}, Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
+    } else {  // a shut valve's ring: λ = 0 (its nodes stick, MovingWallTerm)
+      out.add_internal({dof}, Eigen::VectorXd::Constant(1, state.x[dof]));
+      out.add_tangent(local_shut_[b], Eigen::MatrixXd::Identity(1, 1));
+    }
+  }
 }
 
 void FluxConstraintTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
@@ -167,19 +180,22 @@ void FluxConstraintTerm::observe(const MacroState& state, std::vector<Observable
 
 // --- moving walls
 
-MovingWallTerm::MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes)
-    : owns_globals_(partition.owns_globals()), nodes_(std::move(nodes)) {}
+MovingWallTerm::MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes, std::string multiplier,
+                               std::shared_ptr<ValveStates> valves, std::vector<int> ring_of_node)
+    : owns_globals_(partition.owns_globals()), nodes_(std::move(nodes)), multiplier_(std::move(multiplier)),
+      valves_(std::move(valves)), ring_of_node_(std::move(ring_of_node)) {}
 
 void MovingWallTerm::declare(MacroSystem& system) {
-  lambda_ = &system.field("fluid_wall_multiplier");
+  lambda_ = &system.field(multiplier_);
   v_ = &system.field("fluid_velocity");
-  d_ = &system.field("mesh_displacement");
+  d_ = system.fields().find("mesh_displacement");  // none: a fixed mesh, v̂ = 0
   if (!owns_globals_) return;
   for (size_t k = 0; k < nodes_.size(); ++k) {
     std::vector<int> dofs;
     for (int i = 0; i < 3; ++i) dofs.push_back(v_->node_dof(nodes_[k], i));
     for (int i = 0; i < 3; ++i) dofs.push_back(lambda_->global_dof(static_cast<int>(3 * k) + i));
-    for (int i = 0; i < 3; ++i) dofs.push_back(d_->node_dof(nodes_[k], i));
+    if (d_ && d_->has_node(nodes_[k]))
+      for (int i = 0; i < 3; ++i) dofs.push_back(d_->node_dof(nodes_[k], i));
     dofs_.push_back(dofs);
     // Rows v and λ; columns v, λ and d.
     local_.push_back(system.declare_local(std::vector<int>(dofs.begin(), dofs.begin() + 6), dofs));
@@ -191,19 +207,25 @@ void MovingWallTerm::add_residual_scale(const Field& field, Eigen::VectorXd& sca
 }
 
 void MovingWallTerm::assemble(const MacroState& state, MacroAssembly& out) {
-  const double c0 = state.rate(*d_).dv_dx;  // ∂ḋ/∂d
+  const double c0 = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d
+  if (valves_) valves_->update();  // before the rings' flux rows read them (fluid_terms' order)
   for (size_t k = 0; k < dofs_.size(); ++k) {
     const std::vector<int>& dofs = dofs_[k];
+    const bool moving = dofs.size() == 9;
+    const bool sticks = !valves_ || !valves_->open(ring_of_node_[k]);
     Eigen::VectorXd R(6);
-    for (int i = 0; i < 3; ++i) {
-      R[i] = state.x[dofs[3 + i]];                          // λ on the v row
-      R[3 + i] = state.x[dofs[i]] - state.v[dofs[6 + i]];  // v − ḋ
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6, static_cast<Eigen::Index>(dofs.size()));
+    K.block<3, 3>(0, 3).setIdentity();
+    for (int i = 0; i < 3; ++i) R[i] = state.x[dofs[3 + i]];  // λ on the v row
+    if (sticks) {
+      for (int i = 0; i < 3; ++i) R[3 + i] = state.x[dofs[i]] - (moving ? state.v[dofs[6 + i]] : 0.0);  // v − ḋ
+      K.block<3, 3>(3, 0).setIdentity();
+      if (moving) K.block<3, 3>(3, 6) = -c0 * Mat3::Identity();
+    } else {  // an open valve's ring: λ = 0
+      for (int i = 0; i < 3; ++i) R[3 + i] = state.x[dofs[3 + i]];
+      K.block<3, 3>(3, 3).setIdentity();
     }
     out.add_internal(std::vector<int>(dofs.begin(), dofs.begin() + 6), R);
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6, 9);
-    K.block<3, 3>(0, 3).setIdentity();
-    K.block<3, 3>(3, 0).setIdentity();
-    K.block<3, 3>(3, 6) = -c0 * Mat3::Identity();
     out.add_tangent(local_[k], K);
   }
 }
@@ -243,6 +265,13 @@ void PressureLevelTerm::assemble(const MacroState& state, MacroAssembly& out) {
     K.row(4).head<4>() = weights_[k].transpose();
     out.add_tangent(local_[k], K);
   }
+}
+
+void PressureLevelTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  // μ is global; each coordinator reports it times its share of the volume (the sum is μ V).
+  double V = 0.0;
+  for (const Eigen::Vector4d& m : weights_) V += m.sum();
+  out.push_back({"fluid_volume_imbalance", state.x[mu_->global_dof(0)] * V});
 }
 
 }  // namespace fe2

@@ -6,17 +6,27 @@
 //                          R_v,a += λ_k ∫N_a n da,   R_λk = Σ_a (v_a − v̂_a)·∫N_a n da − Q_k(t)
 //                        (a symmetric saddle block; λ_k is the face's pressure)
 //   PressureLevelTerm    ∫ p dV = 0 by a multiplier μ: R_p,b += μ ∫N_b, R_μ = ∫ p dV
+//                        (so ∫ q div v = μ ∫ q: μ V is any mismatch of the boundary's
+//                        fluxes with an incompressible content, reported)
 //   MovingWallTerm       v_a = v̂_a = ḋ_a at wall nodes by multipliers λ_a:
 //                          R_v,a += λ_a,   R_λa = v_a − ḋ_a   (∂ḋ/∂d by the scheme)
 //                        the wall's motion is given (a prescribed or one-way wall): the
 //                        multiplier does not act back on d (the coupled problem, issue 31,
-//                        shares the unknowns instead)
+//                        shares the unknowns instead). The same term shuts valve rings:
+//                        while a ring's valve is shut its nodes stick (v = v̂), while open
+//                        the rows read λ_a = 0 (the ring's flux constraint takes over)
+//   ValveStates          which valves are open: from the current iterate in a step's first
+//                        three iterations (the predictor's guess corrected), then held to
+//                        the step's end, so that Newton never chases a valve flipping
+//                        between iterations (a known failure of 3D–0D coupling); a shut
+//                        ring's flux row reads λ_k = 0
 // The current face geometry is x = X + d (mesh_displacement, when the scene has one).
 #include "common/mesh/TetMesh.h"
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
 
 #include <functional>
+#include <memory>
 
 namespace fe2 {
 
@@ -65,6 +75,7 @@ class FluxConstraintTerm final : public MacroTerm {
   struct Boundary {
     std::string set;
     std::function<double(double)> flux;
+    std::function<bool()> active;  ///< empty: always; else a valve ring's (shut: λ = 0)
   };
   FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
                      std::vector<Boundary> boundaries);
@@ -84,22 +95,55 @@ class FluxConstraintTerm final : public MacroTerm {
   const Field *v_ = nullptr, *d_ = nullptr, *lambda_ = nullptr;
   std::vector<std::vector<int>> dofs_;  ///< per face: velocity DOFs, then λ
   std::vector<int> local_;
+  std::vector<int> local_shut_;  ///< per boundary: the λλ entry of a shut valve's row (−1: never shut)
+};
+
+/// Per valve ring, open or shut (see above). The valve closure term updates the states
+/// at the start of each of its assemblies: from the current iterate during a step's
+/// first `free_iterations`, then held to the step's end.
+class ValveStates {
+ public:
+  /// `decide`: every ring's state from the current iterate.
+  explicit ValveStates(std::function<std::vector<bool>()> decide, int free_iterations = 3)
+      : decide_(std::move(decide)), free_iterations_(free_iterations) {}
+  void update() {
+    if (iteration_++ < free_iterations_ || open_.empty()) open_ = decide_();
+  }
+  bool open(int ring) {
+    if (open_.empty()) open_ = decide_();  // a ring without closure nodes of its own
+    return open_.at(static_cast<size_t>(ring));
+  }
+  /// The next assembly starts a step (after a commit or a rollback).
+  void release() { iteration_ = 0; }
+
+ private:
+  std::function<std::vector<bool>()> decide_;
+  int free_iterations_;
+  std::vector<bool> open_;
+  int iteration_ = 0;
 };
 
 class MovingWallTerm final : public MacroTerm {
  public:
-  /// `nodes`: fluid_scene.h's moving_wall_nodes, in the multiplier field's order; the
-  /// first coordinator assembles them all (a handful of rows each).
-  MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes);
-  std::string name() const override { return "fluid moving wall"; }
+  /// `nodes`: fluid_scene.h's moving_wall_nodes (or a valve's ring nodes), in the
+  /// multiplier field's order; the first coordinator assembles them all (a handful of
+  /// rows each). With `valves`, node k sticks only while ring ring_of_node[k]'s valve is shut.
+  MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes, std::string multiplier = "fluid_wall_multiplier",
+                 std::shared_ptr<ValveStates> valves = nullptr, std::vector<int> ring_of_node = {});
+  std::string name() const override { return valves_ ? "fluid valve closure" : "fluid moving wall"; }
   void declare(MacroSystem& system) override;
   /// 1 per multiplier (the measure is |v − v̂| in velocity units).
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  void commit(const MacroState&) override { if (valves_) valves_->release(); }
+  void rollback() override { if (valves_) valves_->release(); }
 
  private:
   bool owns_globals_;
   std::vector<int> nodes_;
+  std::string multiplier_;
+  std::shared_ptr<ValveStates> valves_;
+  std::vector<int> ring_of_node_;
   const Field *lambda_ = nullptr, *v_ = nullptr, *d_ = nullptr;
   std::vector<std::vector<int>> dofs_;  ///< per node: v (3), λ (3), d (3)
   std::vector<int> local_;
@@ -113,6 +157,10 @@ class PressureLevelTerm final : public MacroTerm {
   /// The fluid's volume: the measure is the mean pressure.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// fluid_volume_imbalance = μ V = ∫div v_h: the volume rate by which what the boundary
+  /// lets through (flux faces, moving walls) fails to match an incompressible content;
+  /// 0 when they agree (the multiplier then only fixes the level).
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:
   const TetMesh& mesh_;

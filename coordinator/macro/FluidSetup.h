@@ -28,6 +28,15 @@ struct FluidBoundary {
   std::array<bool, 3> components = {true, true, true};
   /// pressure: P(t); flux: Q(t) (volume per time, positive out of the fluid).
   std::function<double(double t)> value;
+  /// flux through a valve ring: Q is the circulation's flow through a cavity's valve at
+  /// the current iterate (out of the fluid: +Q_out of the outflow valve, −Q_in of the
+  /// inflow one) in place of `value`. One-way: the circulation sees the wall's cavity
+  /// pressure, not the ring's (issue 31 closes that loop).
+  struct Valve {
+    int cavity = 0;        ///< index into the circulation's cavities
+    bool outflow = true;   ///< the outflow (aortic) or inflow (mitral) valve
+  };
+  std::optional<Valve> valve;
   double backflow = 0.0;  ///< pressure faces: β of the backflow term (0: off)
 
   using VelocityValue = std::function<Vec3(const Vec3& X, double t)>;
@@ -62,6 +71,13 @@ struct FluidBoundary {
     b.kind = Kind::flux;
     b.set = std::move(set);
     b.value = std::move(Q);
+    return b;
+  }
+  static FluidBoundary valve_flux(std::string set, Valve valve) {
+    FluidBoundary b;
+    b.kind = Kind::flux;
+    b.set = std::move(set);
+    b.valve = valve;
     return b;
   }
 };

@@ -24,7 +24,7 @@ std::vector<int> FluidSetup::flux_boundaries() const {
 namespace {
 
 void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
-  const int order = setup.element == FluidElementKind::taylor_hood ? 2 : 1;
+  const int order = fluid_velocity_order(setup.element);
   if (mesh.order() != order)
     throw InputError(fmt::format("fluid element {}: needs a {} mesh; this mesh is {}",
                                  order == 2 ? "'taylor_hood' (P2/P1)" : "'p1p1' (stabilized P1/P1)",
@@ -62,6 +62,28 @@ std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup)
   return nodes;
 }
 
+std::vector<std::pair<int, int>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup) {
+  std::vector<char> fluid(static_cast<size_t>(mesh.num_nodes()), 0), taken(fluid.size(), 0);
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
+      for (int a : mesh.element_nodes(e)) fluid[static_cast<size_t>(a)] = 1;
+  for (const FluidBoundary& b : setup.boundaries)
+    if (b.kind == FluidBoundary::Kind::velocity || b.kind == FluidBoundary::Kind::moving_wall)
+      for (int a : mesh.node_sets.at(b.set)) taken[static_cast<size_t>(a)] = 1;
+  std::vector<std::pair<int, int>> nodes;
+  int ring = 0;
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (!b.valve) continue;
+    for (int a : mesh.node_sets.at(b.set))
+      if (fluid[static_cast<size_t>(a)] && !taken[static_cast<size_t>(a)]) {
+        nodes.emplace_back(a, ring);
+        taken[static_cast<size_t>(a)] = 1;  // a node on two rings sticks with the first
+      }
+    ++ring;
+  }
+  return nodes;
+}
+
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   check_setup(mesh, setup);
   MacroExtension ext;
@@ -75,6 +97,9 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
                           ResidualNorm::scaled_max, setup.rtol});
   if (const int walls = static_cast<int>(moving_wall_nodes(mesh, setup).size()); walls > 0)
     ext.fields.push_back({"fluid_wall_multiplier", 1, FieldSpace::global, {}, 3 * walls, TimeScheme::none,
+                          ResidualNorm::scaled_max, setup.rtol});
+  if (const int rings = static_cast<int>(valve_ring_nodes(mesh, setup).size()); rings > 0)
+    ext.fields.push_back({"fluid_valve_multiplier", 1, FieldSpace::global, {}, 3 * rings, TimeScheme::none,
                           ResidualNorm::scaled_max, setup.rtol});
   if (setup.mesh_motion)
     ext.fields.push_back({"mesh_displacement", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
@@ -116,8 +141,47 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   return ext;
 }
 
+namespace {
+
+/// Q(t) of a flux boundary: its value, or its valve's flow at the circulation's last
+/// assembly (zero before the first).
+std::function<double(double)> flux_of(const FluidBoundary& b, const CavityPressureTerm* cavities) {
+  if (!b.valve) return b.value;
+  const FluidBoundary::Valve valve = *b.valve;
+  return [cavities, valve](double) {
+    const CavityFlows& f = cavities->flows();
+    if (valve.cavity >= f.n) return 0.0;
+    const size_t c = static_cast<size_t>(valve.cavity);
+    return valve.outflow ? f.Q_out[c] : -f.Q_in[c];
+  };
+}
+
+/// The valve rings' states from the circulation's valves (open: Δp > 0 across it).
+std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityPressureTerm* cavities) {
+  std::vector<FluidBoundary::Valve> valves;
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (!b.valve) continue;
+    if (!cavities)
+      throw InputError(fmt::format("fluid valve ring '{}': needs a circulation (the flow through the valve)", b.set));
+    valves.push_back(*b.valve);
+  }
+  if (valves.empty()) return nullptr;
+  return std::make_shared<ValveStates>([cavities, valves] {
+    const CavityFlows& f = cavities->flows();
+    std::vector<bool> open;
+    for (const FluidBoundary::Valve& v : valves) {
+      const size_t c = static_cast<size_t>(v.cavity);
+      open.push_back(v.cavity < f.n && (v.outflow ? f.outflow_open[c] : f.inflow_open[c]));
+    }
+    return open;
+  });
+}
+
+}  // namespace
+
 std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
-                                                    const MacroPartition& partition) {
+                                                    const MacroPartition& partition,
+                                                    const CavityPressureTerm* cavities) {
   std::vector<int> elements;
   for (int e : partition.elements())
     if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
@@ -127,9 +191,21 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
                                                      setup.residual_pressure));
   std::vector<OpenBoundaryTerm::Boundary> open;
   std::vector<FluxConstraintTerm::Boundary> flux;
+  const std::shared_ptr<ValveStates> valves = valve_states(setup, cavities);
+  int ring = 0;
   for (const FluidBoundary& b : setup.boundaries) {
     if (b.kind == FluidBoundary::Kind::pressure) open.push_back({b.set, b.value, b.backflow});
-    if (b.kind == FluidBoundary::Kind::flux) flux.push_back({b.set, b.value});
+    if (b.kind != FluidBoundary::Kind::flux) continue;
+    std::function<bool()> active;
+    if (b.valve) active = [valves, k = ring++] { return valves->open(k); };
+    flux.push_back({b.set, flux_of(b, cavities), active});
+  }
+  // The valve closure updates the valves' states: before the rings' flux rows.
+  if (const auto rings = valve_ring_nodes(mesh, setup); !rings.empty()) {
+    std::vector<int> nodes, ring_of_node;
+    for (const auto& [a, k] : rings) nodes.push_back(a), ring_of_node.push_back(k);
+    terms.push_back(std::make_unique<MovingWallTerm>(partition, std::move(nodes), "fluid_valve_multiplier", valves,
+                                                     std::move(ring_of_node)));
   }
   if (!open.empty()) terms.push_back(std::make_unique<OpenBoundaryTerm>(mesh, partition, setup.regions, open, setup.fluid.density));
   if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));

@@ -11,6 +11,7 @@
 //   fluid_flux_pressure     global, 1/flux face            max |Q_h − Q| / area: a mean normal velocity
 //   fluid_pressure_level    global, 1       none          |∫p|/V: the mean pressure (enclosed fluid)
 //   fluid_wall_multiplier   global, 3/node  none          max |v − v̂| on moving walls (velocity units)
+//   fluid_valve_multiplier  global, 3/node  none          the same on the rings of shut valves
 //   mesh_displacement       nodal, when the mesh moves: the ALE map x = X + d, v̂ = ḋ by
 //                           the fluid's time scheme (MeshMotionTerm.h)
 //
@@ -20,12 +21,16 @@
 //              stabilization β (common/fluid/fluid_boundary.h)
 //   flux       ∫(v − v̂)·n da = Q(t), its multiplier λ the face's pressure (a traction
 //              −λ n): the form the valve rings take against a circulation model
+//   valve      a flux face whose Q is the circulation's flow through a cavity's valve
+//              (FluidBoundary::Valve) while that valve is open; while it is shut the
+//              ring's nodes stick (v = v̂) and λ = 0. The state is held for a step.
 //   moving_wall v = v̂ at the set's nodes (those not under a velocity condition), by a
 //              multiplier per node and component: the force the wall exerts on the blood
 // Enclosed fluid (no pressure face): the pressure is fixed by ∫p dV = 0 through a
 // Lagrange multiplier (fluid_pressure_level), never by pinning a node, so the answer
 // does not depend on the numbering; a flux face does not fix it (its multiplier moves
 // with the level).
+#include "coordinator/macro/CavityPressureTerm.h"
 #include "coordinator/macro/FluidSetup.h"
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
@@ -45,8 +50,15 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup);
 /// ascending: the nodes where v = v̂ is imposed.
 std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup);
 
-/// The fluid's terms over `partition`'s elements of its regions and their faces.
+/// The fluid's nodes of its valve rings that no velocity or moving-wall condition
+/// holds, with the ring's index among the valve boundaries: where a shut valve sticks.
+std::vector<std::pair<int, int>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup);
+
+/// The fluid's terms over `partition`'s elements of its regions and their faces;
+/// `cavities`: the circulation's term, whose valve flows drive valve rings (assembled
+/// before these terms, so its flows are the current iterate's).
 std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
-                                                    const MacroPartition& partition);
+                                                    const MacroPartition& partition,
+                                                    const CavityPressureTerm* cavities = nullptr);
 
 }  // namespace fe2

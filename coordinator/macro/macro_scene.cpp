@@ -94,11 +94,16 @@ std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const M
   terms.push_back(std::make_unique<PointStressTerm>(spec.mesh, points, wall, responses));
   if (spec.dynamic) terms.push_back(std::make_unique<InertiaTerm>(spec.mesh, wall, spec.density));
   if (!spec.pressure.empty()) terms.push_back(std::make_unique<FollowerPressureTerm>(spec, partition));
-  if (spec.circulation) terms.push_back(std::make_unique<CavityPressureTerm>(spec, partition));
+  const CavityPressureTerm* cavities = nullptr;
+  if (spec.circulation) {
+    auto term = std::make_unique<CavityPressureTerm>(spec, partition);
+    cavities = term.get();
+    terms.push_back(std::move(term));
+  }
   if (spec.formulation.mixed)
     terms.push_back(std::make_unique<IncompressibilityTerm>(spec.mesh, points, wall, spec.formulation));
   if (spec.fluid)
-    for (auto& term : fluid_terms(spec.mesh, *spec.fluid, partition)) terms.push_back(std::move(term));
+    for (auto& term : fluid_terms(spec.mesh, *spec.fluid, partition, cavities)) terms.push_back(std::move(term));
   return terms;
 }
 

@@ -118,5 +118,12 @@ fe2_cli_test(cli.bad_input.fluid_unknown_set 2
              ABSENT ${FE2_CLI_OUT}/fluid_unknown_set
              ARGS run ${FE2_CLI_BAD}/fluid_unknown_set.json --out ${FE2_CLI_OUT}/fluid_unknown_set)
 fe2_cli_test(cli.bad_input.fluid_element_of_other_order 2
-             "/fluid/element: got \"p1p1\", expected the element of the mesh's order [(]quadratic[)]: \"taylor_hood\" or \"auto\""
+             "/fluid/element: got \"p1p1\", expected the element of the mesh's order [(]quadratic[)]: \"taylor_hood\", \"taylor_hood_supg\" or \"auto\""
              ARGS validate ${FE2_CLI_BAD}/fluid_element_of_other_order.json)
+# A valve ring needs a circulation, and a cavity of it.
+fe2_cli_test(cli.bad_input.fluid_valve_without_circulation 2
+             "/fluid/boundaries/4/kind: got \"valve\", expected flux or pressure [(]a valve ring needs /circulation: its flow[)]"
+             ARGS validate ${FE2_CLI_BAD}/fluid_valve_without_circulation.json)
+fe2_cli_test(cli.bad_input.fluid_valve_unknown_cavity 2
+             "/fluid/boundaries/3/cavity: got \"lvv\", expected a cavity of the circulation [(]lv[)]; did you mean \"lv\"[?]"
+             ARGS validate ${FE2_CLI_BAD}/fluid_valve_unknown_cavity.json)

@@ -61,8 +61,9 @@ Eigen::VectorXd residual_at(FluidElementKind kind, const NewtonianFluid& f, Flui
 
 TEST(FluidElement, TangentIsTheDerivativeOfTheResidualGalerkinAndStabilized) {
   const NewtonianFluid blood{1.06, 0.04};
-  for (auto kind : {FluidElementKind::taylor_hood, FluidElementKind::stabilized_p1p1}) {
-    const int order = kind == FluidElementKind::taylor_hood ? 2 : 1;
+  for (auto kind : {FluidElementKind::taylor_hood, FluidElementKind::taylor_hood_supg,
+                    FluidElementKind::stabilized_p1p1}) {
+    const int order = fluid_velocity_order(kind);
     for (double speed : {0.0, 1.0, 30.0}) {  // Stokes-like to convection-dominated
       const FluidElementState s = random_element(order, 7, speed);
       const int n = tet_nodes(order);
@@ -84,6 +85,50 @@ TEST(FluidElement, TangentIsTheDerivativeOfTheResidualGalerkinAndStabilized) {
       EXPECT_LT((K - K_fd).norm(), 1e-7 * K.norm()) << "kind " << static_cast<int>(kind) << ", speed " << speed;
     }
   }
+}
+
+// The stabilized P2 element's residual needs μΔv (else it is inconsistent: Poiseuille's
+// ∇p = μΔv would be penalized). Δ of the isoparametric basis reproduces Δf exactly for a
+// quadratic f on a straight element and Δ(linear) = 0 on a curved one (where dropping
+// the geometry's second derivatives would not).
+TEST(FluidElement, ShapeLaplaciansAreExactForWhatTheElementReproduces) {
+  auto laplacians_at = [](const Eigen::Matrix3Xd& x, const Vec4& bary) {
+    Eigen::VectorXd N;
+    Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+    tet_shape(2, bary, N, dN);
+    const Mat3 Jinv = (x * dN.transpose()).inverse();
+    return tet_shape_laplacians(2, x, Jinv, Jinv.transpose() * dN);
+  };
+  const Vec4 point(0.1, 0.2, 0.3, 0.4);
+  for (double bulge : {0.0, 1.0}) {
+    FluidElementState s = random_element(2, 11, 1.0);
+    if (bulge == 0.0)  // straight: edge nodes at the midpoints
+      for (int k = 0; k < 6; ++k) {
+        const int e[6][2] = {{0, 1}, {1, 2}, {0, 2}, {0, 3}, {1, 3}, {2, 3}};
+        s.x.col(4 + k) = 0.5 * (s.x.col(e[k][0]) + s.x.col(e[k][1]));
+      }
+    const Eigen::VectorXd lap = laplacians_at(s.x, point);
+    // Σ_a x_a ΔN_a = Δx = 0 on any element.
+    EXPECT_LT((s.x * lap).norm(), 1e-12) << "bulge " << bulge;
+    if (bulge != 0.0) continue;
+    // f = x² + 2y² − 3xz + z: Δf = 2 + 4 = 6.
+    Eigen::VectorXd f(10);
+    for (int a = 0; a < 10; ++a) {
+      const Vec3 X = s.x.col(a);
+      f[a] = X.x() * X.x() + 2 * X.y() * X.y() - 3 * X.x() * X.z() + X.z();
+    }
+    EXPECT_NEAR(f.dot(lap), 6.0, 1e-11);
+  }
+  // The curved element's geometry term matters: without it Σ x_a ΔN_a ≠ 0.
+  const FluidElementState curved = random_element(2, 11, 1.0);
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
+  tet_shape(2, point, N, dN);
+  const Mat3 Jinv = (curved.x * dN.transpose()).inverse();
+  const std::vector<Mat3> H = tet_shape_hessians(2);
+  Vec3 without = Vec3::Zero();
+  for (int a = 0; a < 10; ++a) without += curved.x.col(a) * (Jinv.transpose() * H[a] * Jinv).trace();
+  EXPECT_GT(without.norm(), 1e-3);
 }
 
 TEST(FluidElement, GalerkinBlockIsSymmetricInVelocityAndPressure) {
