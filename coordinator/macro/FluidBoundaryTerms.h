@@ -16,7 +16,7 @@
 //                        while a ring's valve is shut its nodes stick (v = v̂), while open
 //                        the rows read λ_a = 0 (the ring's flux constraint takes over)
 //   ValveStates          which valves are open: from the current iterate in a step's first
-//                        three iterations (the predictor's guess corrected), then held to
+//                        five iterations (the predictor's guess corrected), then held to
 //                        the step's end, so that Newton never chases a valve flipping
 //                        between iterations (a known failure of 3D–0D coupling); a shut
 //                        ring's flux row reads λ_k = 0
@@ -104,7 +104,7 @@ class FluxConstraintTerm final : public MacroTerm {
 class ValveStates {
  public:
   /// `decide`: every ring's state from the current iterate.
-  explicit ValveStates(std::function<std::vector<bool>()> decide, int free_iterations = 3)
+  explicit ValveStates(std::function<std::vector<bool>()> decide, int free_iterations = 5)
       : decide_(std::move(decide)), free_iterations_(free_iterations) {}
   void update() {
     if (iteration_++ < free_iterations_ || open_.empty()) open_ = decide_();

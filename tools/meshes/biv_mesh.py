@@ -11,7 +11,11 @@ The septum is the LV wall between the two cavities.
 
 Physical groups: volume `myocardium`; surfaces `lv_endo` (the LV cavity), `rv_endo` (the
 RV cavity: RV free-wall endocardium and the septum's RV side), `epi` (everything
-outside), `base` (z = BASE_Z). Writes MSH 4.1 ASCII, linear or quadratic (10-node tets,
+outside), `base` (z = BASE_Z). With --cavity the blood too: volumes `lv_blood` and
+`rv_blood` filling the cavities up to the base plane and sharing `lv_endo` / `rv_endo`
+with the wall (interfaces: the same nodes), and in each cavity's base the valve rings
+`mitral`, `aortic` (LV) and `tricuspid`, `pulmonary` (RV), the rest `lv_base_cap` and
+`rv_base_cap`. Writes MSH 4.1 ASCII, linear or quadratic (10-node tets,
 6-node triangles, nodes on the curved CAD surfaces), readable by fe2heart's
 read_gmsh_tets. Lengths in mm.
 
@@ -76,18 +80,89 @@ def ellipsoid(occ, e):
     return (3, tag)
 
 
-def build_geometry():
+def base_section(e):
+    """(centre x, semi-axis x, semi-axis y) of ellipsoid e's cut by the base plane."""
+    cx, ax, ay, az = e
+    f = (1.0 - (BASE_Z / az) ** 2) ** 0.5
+    return cx, ax * f, ay * f
+
+
+def valve_rings():
+    """name -> (x, y, radius) of the rings in the cavities' bases: mitral and aortic side
+    by side on the LV's base disc; tricuspid and pulmonary in the RV's crescent between
+    the LV epicardium and the RV endocardium, at y = ±half its half-width."""
+    _, r_lv, _ = base_section(LV_ENDO)
+    rings = {"mitral": (-0.45 * r_lv, 0.0, 0.4 * r_lv), "aortic": (0.5 * r_lv, 0.0, 0.3 * r_lv)}
+    _, r_epi, _ = base_section(LV_EPI)
+    cx, ax, ay = base_section(RV_ENDO)
+    for name, y in (("tricuspid", 0.5 * ay), ("pulmonary", -0.5 * ay)):
+        inner = (r_epi**2 - y**2) ** 0.5 if abs(y) < r_epi else 0.0
+        outer = cx + ax * (1.0 - (y / ay) ** 2) ** 0.5
+        if not outer > inner:
+            sys.exit("biv_mesh.py: the RV cavity has no room for its rings at the base")
+        rings[name] = (0.5 * (inner + outer), y, 0.3 * (outer - inner))
+    return rings
+
+
+def build_geometry(cavity=False):
+    """The wall's volume tag, and with `cavity` the LV and RV blood's."""
     occ = gmsh.model.occ
     lv_endo, lv_epi, rv_endo, rv_epi = (ellipsoid(occ, e) for e in (LV_ENDO, LV_EPI, RV_ENDO, RV_EPI))
     lv_epi_tool = occ.copy([lv_epi])
     rv_cavity, _ = occ.cut([rv_endo], lv_epi_tool)
     outer, _ = occ.fuse([lv_epi], [rv_epi])
     above = occ.addBox(-100.0, -100.0, BASE_Z, 200.0, 200.0, 100.0)
-    solid, _ = occ.cut(outer, [lv_endo] + rv_cavity + [(3, above)])
+    tools = [lv_endo] + rv_cavity + [(3, above)]
+    if not cavity:
+        solid, _ = occ.cut(outer, tools)
+        occ.synchronize()
+        if len(solid) != 1:
+            sys.exit(f"biv_mesh.py: the boolean operations gave {len(solid)} volumes, expected 1")
+        return solid[0][1], None, None
+    solid, _ = occ.cut(outer, tools, removeObject=True, removeTool=False)
+    lv_blood, _ = occ.cut([lv_endo], [(3, above)], removeTool=False)
+    rv_blood, _ = occ.cut(rv_cavity, [(3, above)])
+    disks = [(2, occ.addDisk(x, y, BASE_Z, r, r)) for x, y, r in valve_rings().values()]
+    out, _ = occ.fragment(solid + lv_blood + rv_blood, disks)
     occ.synchronize()
-    if len(solid) != 1:
-        sys.exit(f"biv_mesh.py: the boolean operations gave {len(solid)} volumes, expected 1")
-    return solid[0][1]
+    volumes = [t for d, t in out if d == 3]
+    if len(volumes) != 3:
+        sys.exit(f"biv_mesh.py: the boolean operations gave {len(volumes)} volumes, expected 3 (wall, LV and RV blood)")
+
+    # Each cavity's blood lies within its endocardial ellipsoid's x-extent (OCC's boxes are
+    # a little loose); the wall reaches out to the epicardia. The RV blood's centre of
+    # mass is outside the LV.
+    def within(e, v):
+        x_max = gmsh.model.getBoundingBox(3, v)[3]
+        return x_max < e[0] + 1.05 * e[1]
+
+    lv = [v for v in volumes if within(LV_ENDO, v)]
+    rv = [v for v in volumes if v not in lv and within(RV_ENDO, v) and level(LV_EPI, occ.getCenterOfMass(3, v)) > 0.0]
+    wall = [v for v in volumes if v not in lv + rv]
+    if not (len(lv) == len(rv) == len(wall) == 1):
+        sys.exit("biv_mesh.py: could not tell the wall from the LV and RV blood")
+    return wall[0], lv[0], rv[0]
+
+
+def classify_with_blood(surface, wall, lv, rv):
+    """The name of a surface of the wall and blood volumes, from what it bounds."""
+    up, _ = gmsh.model.getAdjacencies(2, surface)
+    up = set(up)
+    if up == {wall, lv}:
+        return "lv_endo"
+    if up == {wall, rv}:
+        return "rv_endo"
+    if up == {wall}:
+        return classify(surface)
+    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(2, surface)
+    eps = 1e-3 * LV_EPI[3]  # OCC's boxes carry the surfaces' tolerance
+    if not (abs(z0 - BASE_Z) < eps and abs(z1 - BASE_Z) < eps):
+        return None
+    cx, cy, w = 0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.5 * (x1 - x0)
+    for name, (x, y, r) in valve_rings().items():
+        if abs(cx - x) < eps and abs(cy - y) < eps and abs(w - r) < eps:
+            return name
+    return "lv_base_cap" if up == {lv} else "rv_base_cap"
 
 
 def classify(surface):
@@ -119,6 +194,8 @@ def main():
     parser.add_argument("--rv-wall", type=float, help="RV free-wall thickness in mm (default: 3 mm x scale)")
     parser.add_argument("--rv-cavity", type=float, default=1.0,
                         help="multiplies the RV endocardium's semi-axes (default 1): a larger RV cavity")
+    parser.add_argument("--cavity", action="store_true",
+                        help="mesh the blood in both cavities too, with the valve rings in their bases")
     args = parser.parse_args()
     if not args.size > 0.0:
         sys.exit(f"biv_mesh.py: --size {args.size}: expected a size > 0 (mm)")
@@ -137,7 +214,7 @@ def main():
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.NumThreads", 1)  # one thread: the same mesh every run
         gmsh.model.add("biv")
-        volume = build_geometry()
+        wall, lv, rv = build_geometry(args.cavity)
         gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
         gmsh.option.setNumber("Mesh.MeshSizeMin", 0.3 * args.size)
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", args.curvature)  # elements per 2π of curvature
@@ -148,12 +225,22 @@ def main():
         if args.order == 2:
             raise_to_quadratic()  # the septum is the thin element that could fold
         groups = {}
-        for dim, tag in gmsh.model.getBoundary([(3, volume)], oriented=False):
-            groups.setdefault(classify(tag), []).append(tag)
-        for needed in ("lv_endo", "rv_endo", "epi", "base"):
-            if needed not in groups:
-                sys.exit(f"biv_mesh.py: no surface classified as {needed}; check the ellipsoids")
-        write_physical_groups(args.output, args.order, groups, [("myocardium", [volume], -1)])
+        if args.cavity:
+            for _, tag in gmsh.model.getEntities(2):
+                name = classify_with_blood(tag, wall, lv, rv)
+                if name:
+                    groups.setdefault(name, []).append(tag)
+            needed = ("lv_endo", "rv_endo", "epi", "base", "lv_base_cap", "rv_base_cap") + tuple(valve_rings())
+            volumes = [("myocardium", [wall], 1), ("lv_blood", [lv], 2), ("rv_blood", [rv], 3)]
+        else:
+            for dim, tag in gmsh.model.getBoundary([(3, wall)], oriented=False):
+                groups.setdefault(classify(tag), []).append(tag)
+            needed = ("lv_endo", "rv_endo", "epi", "base")
+            volumes = [("myocardium", [wall], -1)]
+        for name in needed:
+            if name not in groups:
+                sys.exit(f"biv_mesh.py: no surface classified as {name}; check the ellipsoids")
+        write_physical_groups(args.output, args.order, groups, volumes)
     finally:
         gmsh.finalize()
 

@@ -1,0 +1,106 @@
+#!/usr/bin/python3
+"""tools/meshes/biv_mesh.py --cavity: the biventricular wall with blood in both cavities.
+
+  check_biv_cavity_mesh.py FE2HEART OUT_DIR
+
+Writes OUT_DIR/biv_blood.msh (--cavity --size 3 --order 2) and checks:
+  - regions myocardium (1), lv_blood (2), rv_blood (3); the LV blood's volume within 6 %
+    of the truncated ellipsoid it fills (straight-sided vertex tets under-fill curves);
+  - the blood shares the endocardia with the wall: every node of an lv_endo (rv_endo)
+    triangle is a node of both a wall tet and an LV (RV) blood tet;
+  - the four rings lie in the base plane, each inside its own cavity's base;
+  - `fe2heart validate` accepts a scene with blood in both cavities, valve rings for both
+    ventricles against a biventricular Windkessel, and the endocardia (interfaces of the
+    mesh) as the wall's cavity surfaces.
+Exits 1 naming the first failed check.
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import meshio
+import numpy as np
+
+
+def fail(msg):
+    print("check_biv_cavity_mesh.py: " + msg)
+    sys.exit(1)
+
+
+def main():
+    fe2heart, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    msh = os.path.join(out, "biv_blood.msh")
+    script = os.path.join(os.path.dirname(__file__), "../../tools/meshes/biv_mesh.py")
+    subprocess.run(["/usr/bin/python3", script, msh, "--cavity", "--size", "3", "--order", "2"], check=True)
+    m = meshio.read(msh)
+    tets = np.vstack([c.data[:, :4] for c in m.cells if c.type.startswith("tetra")])
+    region = np.concatenate([m.cell_data["gmsh:physical"][i] for i, c in enumerate(m.cells) if c.type.startswith("tetra")])
+    p = m.points
+    vol = np.einsum("ij,ij->i", p[tets[:, 1]] - p[tets[:, 0]],
+                    np.cross(p[tets[:, 2]] - p[tets[:, 0]], p[tets[:, 3]] - p[tets[:, 0]])) / 6.0
+    if set(region) != {1, 2, 3}:
+        fail(f"regions {sorted(set(region))}, expected 1 (myocardium), 2 (lv_blood), 3 (rv_blood)")
+    if not (vol > 0).all():
+        fail("an inverted tet")
+    # LV endo 7/17 mm cut at z = 5: π a² ((b + c) − (b³ + c³)/(3c²)).
+    a, c, b = 7.0, 17.0, 5.0
+    exact = math.pi * a * a * ((b + c) - (b**3 + c**3) / (3 * c * c))
+    lv = vol[region == 2].sum()
+    print(f"LV blood {lv:.0f} mm³ (ellipsoid {exact:.0f}), RV blood {vol[region == 3].sum():.0f}, wall {vol[region == 1].sum():.0f}")
+    if abs(lv / exact - 1) > 0.06:
+        fail(f"LV blood {lv:.0f} mm³, expected within 6 % of {exact:.0f}")
+    node_regions = {}
+    for t, r in zip(tets, region):
+        for a_ in t:
+            node_regions.setdefault(int(a_), set()).add(int(r))
+    names = {name: tag for name, (tag, dim) in m.field_data.items()}
+    tri_blocks = [(i, c) for i, c in enumerate(m.cells) if c.type.startswith("triangle")]
+
+    def triangles(name):
+        return np.vstack([c.data[:, :3][m.cell_data["gmsh:physical"][i] == names[name]] for i, c in tri_blocks])
+
+    for surface, blood in (("lv_endo", 2), ("rv_endo", 3)):
+        for a_ in set(triangles(surface).ravel()):
+            if not {1, blood} <= node_regions[int(a_)]:
+                fail(f"{surface}: node {a_} is not shared by the wall and its blood")
+    for ring, blood in (("mitral", 2), ("aortic", 2), ("tricuspid", 3), ("pulmonary", 3)):
+        nodes = set(triangles(ring).ravel())
+        if not np.allclose(p[list(nodes), 2], 5.0, atol=1e-6):
+            fail(f"{ring}: not in the base plane z = 5")
+        if not all(blood in node_regions[int(a_)] for a_ in nodes):
+            fail(f"{ring}: not in its cavity's base")
+    spec = {
+        "title": "biventricular wall with blood in both cavities (check_biv_cavity_mesh.py)",
+        "mesh": {"kind": "gmsh", "file": "biv_blood.msh", "wall_regions": ["myocardium"]},
+        "models": {"myocardium": {"kind": "macro_law", "material": {"model": "neo_hookean", "E": 30000, "nu": 0.45}}},
+        "formulation": {"kind": "mixed"},
+        "dirichlet": [{"set": "base"}],
+        "cavities": {"lv": {"surface": "lv_endo"}, "rv": {"surface": "rv_endo"}},
+        "circulation": {"kind": "windkessel", "period": 0.8, "cavities": {"lv": {}, "rv": {}}},
+        "fluid": {
+            "regions": ["lv_blood", "rv_blood"], "density": 1.06e-3, "viscosity": 3.5e-3,
+            "element": "taylor_hood_supg", "time": "bdf1",
+            "boundaries": [{"kind": "moving_wall", "set": "lv_endo"}, {"kind": "moving_wall", "set": "rv_endo"},
+                           {"kind": "no_slip", "set": "lv_base_cap"}, {"kind": "no_slip", "set": "rv_base_cap"},
+                           {"kind": "valve", "set": "mitral", "cavity": "lv", "side": "inflow"},
+                           {"kind": "valve", "set": "aortic", "cavity": "lv", "side": "outflow"},
+                           {"kind": "valve", "set": "tricuspid", "cavity": "rv", "side": "inflow"},
+                           {"kind": "valve", "set": "pulmonary", "cavity": "rv", "side": "outflow"}],
+            "mesh_motion": {"boundaries": [{"set": s, "follow": "wall" if s.endswith("endo") else "fixed"}
+                                           for s in ("lv_endo", "rv_endo", "lv_base_cap", "rv_base_cap",
+                                                     "mitral", "aortic", "tricuspid", "pulmonary")]}},
+        "time": {"beats": 1, "steps_per_beat": 160, "inflation_steps": 10},
+        "output": {"vtu": False}}
+    path = os.path.join(out, "biv_blood.json")
+    json.dump(spec, open(path, "w"), indent=1)
+    r = subprocess.run([fe2heart, "validate", path], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"fe2heart validate {path}: exit {r.returncode}: {r.stdout}{r.stderr}")
+    print("ok")
+
+
+if __name__ == "__main__":
+    main()
