@@ -4,6 +4,7 @@
 #include "coordinator/RunSpec.h"
 
 #include <algorithm>
+#include <type_traits>
 
 namespace fe2 {
 
@@ -17,12 +18,15 @@ std::array<bool, 3> components_of(SpecNode& b) {
   return c;
 }
 
-/// value · ramp(t) of a boundary entry.
-std::function<double(double)> ramped(SpecNode& b, const RunSpec& spec) {
-  const double value = b.number("value");
+/// value · ramp(t) of a boundary entry (a number or three).
+template <class Value>
+std::function<Value(double)> ramped(SpecNode& b, const RunSpec& spec) {
+  Value value;
+  if constexpr (std::is_same_v<Value, double>) value = b.number("value");
+  else value = vec3_of(b.numbers("value"));
   const Ramp ramp = b.choice("ramp") == "linear" ? Ramp::linear : Ramp::constant;
   const double t_end = spec.t_end;
-  return [value, ramp, t_end](double t) { return value * ramp_factor(ramp, t, t_end); };
+  return [value, ramp, t_end](double t) { return Value(value * ramp_factor(ramp, t, t_end)); };
 }
 
 template <class Named>
@@ -81,18 +85,15 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
       if (kind == "no_slip") {
         s.boundaries.push_back(FluidBoundary::no_slip(set, comps));
       } else {
-        const Vec3 value = vec3_of(b.numbers("value"));
-        const Ramp ramp = b.choice("ramp") == "linear" ? Ramp::linear : Ramp::constant;
-        const double t_end = spec.t_end;
-        s.boundaries.push_back(FluidBoundary::prescribed_velocity(
-            set, [value, ramp, t_end](const Vec3&, double t) { return Vec3(value * ramp_factor(ramp, t, t_end)); },
-            comps));
+        auto g = ramped<Vec3>(b, spec);
+        s.boundaries.push_back(FluidBoundary::prescribed_velocity(set, [g](const Vec3&, double t) { return g(t); }, comps));
       }
     } else {
       check_set(b, spec.mesh.faces, set, "a named boundary face set of the mesh");
       if (kind == "pressure") {
-        auto P = ramped(b, spec);
-        s.boundaries.push_back(FluidBoundary::pressure(set, P, b.number("backflow")));
+        s.boundaries.push_back(FluidBoundary::pressure(set, ramped<double>(b, spec), b.number("backflow")));
+      } else if (kind == "traction") {
+        s.boundaries.push_back(FluidBoundary::traction_of(set, ramped<Vec3>(b, spec), b.number("backflow")));
       } else if (kind == "valve") {
         const std::string cavity = b.string("cavity");
         if (!spec.circulation) b.fail("kind", "flux or pressure (a valve ring needs /circulation: its flow)");
@@ -102,7 +103,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
         s.boundaries.push_back(FluidBoundary::valve_flux(
             set, {static_cast<int>(it - names.begin()), b.choice("side") == "outflow"}));
       } else {
-        s.boundaries.push_back(FluidBoundary::flux(set, ramped(b, spec)));
+        s.boundaries.push_back(FluidBoundary::flux(set, ramped<double>(b, spec)));
       }
     }
     b.finish();

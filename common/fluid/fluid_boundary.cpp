@@ -26,6 +26,17 @@ Eigen::Matrix3Xd face_normal_integrals(int order, const Eigen::Matrix3Xd& x) {
   return S;
 }
 
+Eigen::VectorXd face_shape_integrals(int order, const Eigen::Matrix3Xd& x) {
+  Eigen::VectorXd S = Eigen::VectorXd::Zero(triangle_nodes(order));
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 2, Eigen::Dynamic> dN;
+  for (const auto& q : triangle_rule(2 * order)) {  // exact on straight faces
+    triangle_shape(order, q.bary, N, dN);
+    S += area_vector(x, dN, q.weight).norm() * N;
+  }
+  return S;
+}
+
 void backflow_face(int order, double density, double beta, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                    const Eigen::Matrix3Xd& w, Eigen::VectorXd& R, Eigen::MatrixXd* K) {
   const int m = triangle_nodes(order);

@@ -18,6 +18,9 @@ namespace fe2 {
 /// ∫ N_a n da per face node (3 x m): the face's normal-weighted shape integrals.
 Eigen::Matrix3Xd face_normal_integrals(int order, const Eigen::Matrix3Xd& x);
 
+/// ∫ N_a da per face node (m): the load of a uniform traction t is t ∫N_a da.
+Eigen::VectorXd face_shape_integrals(int order, const Eigen::Matrix3Xd& x);
+
 /// The backflow term's residual (3m, node-major) and, if `K` is not null, its tangent
 /// ∂R/∂v on the face's velocity nodes. `v`, `w`: velocity and mesh velocity at the nodes.
 void backflow_face(int order, double density, double beta, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,

@@ -20,10 +20,10 @@ Schema components() {
 Schema boundary() {
   return object(
       true, "a boundary condition of the fluid on a node set (velocities) or face set (pressure, flux)",
-      {{"kind", choice(nullopt, {"no_slip", "velocity", "moving_wall", "pressure", "flux", "valve"},
+      {{"kind", choice(nullopt, {"no_slip", "velocity", "moving_wall", "pressure", "traction", "flux", "valve"},
                        "no_slip: v = 0; velocity: v prescribed; moving_wall: v = the mesh velocity (no-slip "
                        "on a wall the mesh follows; needs mesh_motion); pressure: traction −P n on an open "
-                       "boundary; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure; valve: a "
+                       "boundary; traction: a force per area t on a face; flux: ∫(v − v̂)·n da = Q, its multiplier the face's pressure; valve: a "
                        "flux face whose Q is the circulation's flow through a cavity's valve")}},
       "kind",
       {{"no_slip", {{"set", set_key("named node set (or face)")}, {"components", components()}}},
@@ -41,6 +41,11 @@ Schema boundary() {
                              "β of the backflow stabilization (Moghadam et al. 2011): dissipates the "
                              "kinetic energy of flow coming back in; 0.2–1 on outlets that may see "
                              "reversed flow, 0: off")}}},
+       {"traction",
+        {{"set", set_key("named boundary face set of the fluid")},
+         {"value", numbers(3, nullopt, "traction t at t_end (Pa): the force per area the outside exerts on the blood")},
+         {"ramp", ramp_schema()},
+         {"backflow", number(0.0, Range::non_negative(), "β of the backflow stabilization (see pressure)")}}},
        {"flux",
         {{"set", set_key("named boundary face set of the fluid")},
          {"value", number(nullopt, Range::any(), "flux Q at t_end, out of the fluid (volume/s)")},

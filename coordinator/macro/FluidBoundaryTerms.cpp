@@ -86,9 +86,16 @@ void OpenBoundaryTerm::assemble(const MacroState& state, MacroAssembly& out) {
   for (size_t k = 0; k < faces_.size(); ++k) {
     const Boundary& b = boundaries_[faces_[k].boundary];
     fluid_face_geometry(mesh_, d_, faces_[k].nodes, state, x, w);
-    // t = −P n: f_ext,a = −P ∫ N_a n da.
-    const Eigen::Matrix3Xd S = face_normal_integrals(order, x);
-    out.add_external(dofs_[k], -b.pressure(state.time) * Eigen::Map<const Eigen::VectorXd>(S.data(), S.size()));
+    if (b.pressure) {  // t = −P n: f_ext,a = −P ∫ N_a n da
+      const Eigen::Matrix3Xd S = face_normal_integrals(order, x);
+      out.add_external(dofs_[k], -b.pressure(state.time) * Eigen::Map<const Eigen::VectorXd>(S.data(), S.size()));
+    } else {  // f_ext,a = t ∫ N_a da
+      const Eigen::VectorXd S = face_shape_integrals(order, x);
+      const Vec3 t = b.traction(state.time);
+      Eigen::VectorXd f(3 * S.size());
+      for (Eigen::Index a = 0; a < S.size(); ++a) f.segment<3>(3 * a) = S[a] * t;
+      out.add_external(dofs_[k], f);
+    }
     if (local_[k] < 0) continue;
     const Eigen::VectorXd v = gather(state.x, dofs_[k]);
     backflow_face(order, density_, b.backflow, x, Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, v.size() / 3), w, R,

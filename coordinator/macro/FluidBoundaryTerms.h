@@ -1,6 +1,7 @@
 #pragma once
 // The fluid's boundary and level terms (fluid_scene.h), each on the partition's share:
-//   OpenBoundaryTerm     pressure faces: f_ext,a = −P(t) ∫N_a n da, and backflow
+//   OpenBoundaryTerm     pressure faces: f_ext,a = −P(t) ∫N_a n da; traction faces:
+//                        f_ext,a = t(t) ∫N_a da (on the current face); and backflow
 //                        stabilization where β > 0 (common/fluid/fluid_boundary.h)
 //   FluxConstraintTerm   flux faces k: the multiplier λ_k acts as the traction −λ_k n,
 //                          R_v,a += λ_k ∫N_a n da,   R_λk = Σ_a (v_a − v̂_a)·∫N_a n da − Q_k(t)
@@ -48,8 +49,9 @@ class OpenBoundaryTerm final : public MacroTerm {
  public:
   struct Boundary {
     std::string set;
-    std::function<double(double)> pressure;
+    std::function<double(double)> pressure;  ///< traction −P n (empty: `traction` instead)
     double backflow = 0.0;
+    std::function<Vec3(double)> traction;    ///< a traction vector t (force per current area)
   };
   /// The partition's triangles of the boundaries' face sets that bound `regions`.
   OpenBoundaryTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,

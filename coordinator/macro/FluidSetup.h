@@ -19,7 +19,7 @@ enum class MeshMotionKind { harmonic, elastic };
 struct FluidBoundary {
   /// moving_wall: v = v̂ (the mesh velocity) on the set's nodes, by multipliers: no-slip
   /// on a wall that moves with the mesh (nodes under a velocity condition keep that).
-  enum class Kind { velocity, pressure, flux, moving_wall };
+  enum class Kind { velocity, pressure, traction, flux, moving_wall };
   Kind kind = Kind::velocity;
   std::string set;   ///< a node set (velocity) or a face set (pressure, flux)
   /// velocity: the prescribed value at reference point X and time t; components[i]
@@ -37,7 +37,9 @@ struct FluidBoundary {
     bool outflow = true;   ///< the outflow (aortic) or inflow (mitral) valve
   };
   std::optional<Valve> valve;
-  double backflow = 0.0;  ///< pressure faces: β of the backflow term (0: off)
+  /// traction: t(t), the force per current area the outside exerts on the blood.
+  std::function<Vec3(double t)> traction;
+  double backflow = 0.0;  ///< pressure and traction faces: β of the backflow term (0: off)
 
   using VelocityValue = std::function<Vec3(const Vec3& X, double t)>;
   using ScalarValue = std::function<double(double t)>;
@@ -57,6 +59,14 @@ struct FluidBoundary {
     b.kind = Kind::pressure;
     b.set = std::move(set);
     b.value = std::move(P);
+    b.backflow = backflow;
+    return b;
+  }
+  static FluidBoundary traction_of(std::string set, std::function<Vec3(double)> t, double backflow = 0.0) {
+    FluidBoundary b;
+    b.kind = Kind::traction;
+    b.set = std::move(set);
+    b.traction = std::move(t);
     b.backflow = backflow;
     return b;
   }
@@ -110,7 +120,7 @@ struct FluidSetup {
   /// The pressure whose nodal forces floor the momentum residual's reference: below
   /// rtol times these the flow is converged even when every force vanishes.
   double residual_pressure = 1.0;
-  /// No pressure boundary: the pressure level needs its constraint.
+  /// No pressure or traction boundary: the pressure level needs its constraint.
   bool enclosed() const;
   /// The flux boundaries' indices into `boundaries`, in order (their multipliers' order).
   std::vector<int> flux_boundaries() const;

@@ -10,8 +10,9 @@
 namespace fe2 {
 
 bool FluidSetup::enclosed() const {
-  return std::none_of(boundaries.begin(), boundaries.end(),
-                      [](const FluidBoundary& b) { return b.kind == FluidBoundary::Kind::pressure; });
+  return std::none_of(boundaries.begin(), boundaries.end(), [](const FluidBoundary& b) {
+    return b.kind == FluidBoundary::Kind::pressure || b.kind == FluidBoundary::Kind::traction;
+  });
 }
 
 std::vector<int> FluidSetup::flux_boundaries() const {
@@ -38,7 +39,8 @@ void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
       throw InputError(fmt::format("fluid boundary 'moving_wall' on '{}': needs a mesh motion (the wall's velocity "
                                    "is the mesh's); without one use 'no_slip'",
                                    b.set));
-    const bool on_faces = b.kind == FluidBoundary::Kind::pressure || b.kind == FluidBoundary::Kind::flux;
+    const bool on_faces = b.kind == FluidBoundary::Kind::pressure || b.kind == FluidBoundary::Kind::traction ||
+                          b.kind == FluidBoundary::Kind::flux;
     if (on_faces ? !mesh.faces.count(b.set) : !mesh.node_sets.count(b.set))
       throw InputError(fmt::format("fluid boundary: the mesh has no {} '{}'", on_faces ? "face set" : "node set", b.set));
   }
@@ -194,7 +196,8 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   const std::shared_ptr<ValveStates> valves = valve_states(setup, cavities);
   int ring = 0;
   for (const FluidBoundary& b : setup.boundaries) {
-    if (b.kind == FluidBoundary::Kind::pressure) open.push_back({b.set, b.value, b.backflow});
+    if (b.kind == FluidBoundary::Kind::pressure) open.push_back({b.set, b.value, b.backflow, {}});
+    if (b.kind == FluidBoundary::Kind::traction) open.push_back({b.set, {}, b.backflow, b.traction});
     if (b.kind != FluidBoundary::Kind::flux) continue;
     std::function<bool()> active;
     if (b.valve) active = [valves, k = ring++] { return valves->open(k); };

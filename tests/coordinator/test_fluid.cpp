@@ -112,6 +112,22 @@ TEST(Fluid, TaylorHoodReproducesPoiseuilleFlowExactly) {
   }
 }
 
+// The same outlet as a traction t = −P_out n (n = +x): the same exact flow. A traction
+// face fixes the pressure level as a pressure face does.
+TEST(Fluid, ATractionOutletActsAsItsPressure) {
+  RunSpec spec = read_run_spec(channel_scene(2, 2), "");
+  const Poiseuille exact;
+  FluidSetup setup = channel_fluid(FluidElementKind::taylor_hood, exact);
+  setup.boundaries.push_back(
+      FluidBoundary::traction_of("xmax", [exact](double) { return Vec3(-exact.P_out, 0.0, 0.0); }));
+  ASSERT_FALSE(setup.enclosed());
+  const FluidRun r = run_fluid(spec, setup);
+  ASSERT_TRUE(r.result.converged) << r.result.error;
+  const auto [ev, ep] = errors(spec.mesh, r, exact);
+  EXPECT_LT(ev, 1e-10 * exact.U);
+  EXPECT_LT(ep, 1e-10 * exact.G() * kL);
+}
+
 // The outlet's flux tied to its multiplier: prescribing the exact flux Q = (2/3) U H W
 // gives the exact flow, and the multiplier is the outlet's pressure. Without a pressure
 // face the level is fixed by ∫p = 0, so p = G(L − x) − G L/2 and λ = −G L/2.
