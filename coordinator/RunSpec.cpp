@@ -211,7 +211,24 @@ void read_mesh(SpecNode m, RunSpec& spec) {
     p.longitudinal = static_cast<int>(div[1]);
     p.transmural = static_cast<int>(div[2]);
     p.order = order();
-    spec.mesh = make_lv_mesh(p);
+    if (m.has("cavity")) {
+      SpecNode cavity = m.child("cavity");
+      p.cavity_layers = cavity.integer("layers");
+      SpecNode rings = cavity.child("rings");
+      for (auto it = rings.raw().begin(); it != rings.raw().end(); ++it) {
+        SpecNode ring = rings.child(it.key());
+        const auto centre = ring.numbers("center");
+        p.rings.push_back({it.key(), centre[0], centre[1], ring.number("radius")});
+        ring.finish();
+      }
+      rings.finish();
+      cavity.finish();
+    }
+    try {
+      spec.mesh = make_lv_mesh(p);
+    } catch (const InputError& e) {  // the generator's own checks (rings in the cap): say where
+      throw InputError(fmt::format("{}: {}", m.path(), e.what()));
+    }
     spec.mesh_source = "LV generator";
   } else {
     std::filesystem::path p = m.string("file");

@@ -8,7 +8,18 @@
 // the base plane z = 5 mm; the apex points toward -z. Those are the defaults here.
 #include "common/mesh/TetMesh.h"
 
+#include <string>
+#include <vector>
+
 namespace fe2 {
+
+/// A disc in the base plane: the cavity's base-cap triangles whose centroid lies in it
+/// form the face set `name` (a valve ring: mitral, aortic).
+struct LvBaseRing {
+  std::string name;
+  double x = 0.0, y = 0.0;  ///< centre in the base plane
+  double radius = 0.0;
+};
 
 struct LvMeshParams {
   double endo_short = 7.0;   ///< endocardial short (equatorial) semi-axis r_s
@@ -20,6 +31,10 @@ struct LvMeshParams {
   int longitudinal = 8;      ///< divisions from apex to base (>= 1)
   int transmural = 2;        ///< divisions from endo to epi (>= 1)
   int order = 1;             ///< 1: 4-node tets; 2: 10-node isoparametric tets
+  /// > 0: the cavity is meshed too (blood), in this many layers from the long axis to
+  /// the endocardium; 0: the wall only.
+  int cavity_layers = 0;
+  std::vector<LvBaseRing> rings;  ///< named discs of the cavity's base cap (cavity only)
 };
 
 /// Meshes the LV wall. Nodes lie on nested ellipsoidal shells whose semi-axes go
@@ -37,6 +52,15 @@ struct LvMeshParams {
 /// Named faces `endo`, `epi`, `base` (outward triangles, each also a node set with its
 /// edge nodes); node sets `apex_endo`, `apex_epi` (the apex points). Throws InputError
 /// (naming the parameter, its value and what was expected) for bad parameters.
+///
+/// With a cavity the grid continues inward from the endocardium: shells of semi-axes
+/// (τ·r_s, r_l), τ from 1 (the endocardium) down to 0 (the long axis, where each ring
+/// collapses to one node), all meeting at the endocardial apex, so every horizontal
+/// slice of the cavity is a polar grid and the base cap is flat. The same Kuhn split
+/// makes the blood conform to the wall: they share the endocardium's nodes. Region 1
+/// `myocardium`, region 2 `blood`; `endo` is then the interface between them (normal
+/// into the blood); the cap of the cavity in the base plane is the face `base_cap`,
+/// less the triangles of each ring (centroid in its disc), which form the ring's face.
 TetMesh make_lv_mesh(const LvMeshParams& p);
 
 }  // namespace fe2
