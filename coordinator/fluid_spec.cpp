@@ -126,6 +126,18 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
     m.finish();
     s.mesh_motion = motion;
   }
+  s.two_way = node.choice("coupling") == "two_way";
+  s.shape_derivatives = s.two_way;
+  if (s.two_way) {
+    const bool walls = std::any_of(s.boundaries.begin(), s.boundaries.end(),
+                                   [](const FluidBoundary& b) { return b.kind == FluidBoundary::Kind::moving_wall; });
+    if (!walls) node.fail("coupling", "\"one_way\" (two_way couples the blood's moving_wall sets to the wall: there are none)");
+    // The circulation's cavity term loads its surface with the lumped pressure p_c: with
+    // the blood's own pressure on the same wall it would be loaded twice.
+    if (spec.circulation)
+      node.fail("coupling", "\"one_way\" with /circulation (its lumped cavity pressures load the wall; two_way blood "
+                            "loads it with its own pressure: only one of them may)");
+  }
   node.finish();
   return setup;
 }

@@ -103,6 +103,11 @@ Schema fluid_schema() {
         number(1.0, Range::positive(),
                "Pa: the momentum residual is measured against the forces of at least this pressure "
                "(a flow at rest has no forces to compare with)")},
+       {"coupling",
+        choice("one_way", {"one_way", "two_way"},
+               "one_way: the blood follows the wall (its moving walls' forces do not act back); two_way: the "
+               "force each moving wall exerts on the blood acts back on the wall (shared interface nodes, "
+               "the traction balanced node by node), so the blood's pressure loads the wall")},
        {"boundaries", array(true, "the fluid's boundary conditions, applied in order (a later velocity "
                                   "condition on a node replaces an earlier one)",
                             boundary(), 1)},

@@ -192,20 +192,31 @@ MovingWallTerm::MovingWallTerm(const MacroPartition& partition, std::vector<int>
     : owns_globals_(partition.owns_globals()), nodes_(std::move(nodes)), multiplier_(std::move(multiplier)),
       valves_(std::move(valves)), ring_of_node_(std::move(ring_of_node)) {}
 
+std::unique_ptr<MovingWallTerm> MovingWallTerm::loading_wall(const MacroPartition& partition, std::vector<int> nodes) {
+  auto term = std::make_unique<MovingWallTerm>(partition, std::move(nodes));
+  term->loads_wall_ = true;
+  return term;
+}
+
 void MovingWallTerm::declare(MacroSystem& system) {
   lambda_ = &system.field(multiplier_);
   v_ = &system.field("fluid_velocity");
   d_ = system.fields().find("mesh_displacement");  // none: a fixed mesh, v̂ = 0
+  if (loads_wall_) u_ = &system.field("displacement");
   if (!owns_globals_) return;
   for (size_t k = 0; k < nodes_.size(); ++k) {
-    std::vector<int> dofs;
-    for (int i = 0; i < 3; ++i) dofs.push_back(v_->node_dof(nodes_[k], i));
-    for (int i = 0; i < 3; ++i) dofs.push_back(lambda_->global_dof(static_cast<int>(3 * k) + i));
-    if (d_ && d_->has_node(nodes_[k]))
-      for (int i = 0; i < 3; ++i) dofs.push_back(d_->node_dof(nodes_[k], i));
-    dofs_.push_back(dofs);
-    // Rows v and λ; columns v, λ and d.
-    local_.push_back(system.declare_local(std::vector<int>(dofs.begin(), dofs.begin() + 6), dofs));
+    Node n;
+    const int a = nodes_[k];
+    for (int i = 0; i < 3; ++i) n.dofs.push_back(v_->node_dof(a, i));
+    for (int i = 0; i < 3; ++i) n.dofs.push_back(lambda_->global_dof(static_cast<int>(3 * k) + i));
+    if (d_ && d_->has_node(a))
+      for (int i = 0; i < 3; ++i) n.dofs.push_back(d_->node_dof(a, i));
+    if (u_ && u_->has_node(a))
+      for (int i = 0; i < 3; ++i) n.wall.push_back(u_->node_dof(a, i));
+    std::vector<int> rows(n.dofs.begin(), n.dofs.begin() + 6);
+    rows.insert(rows.end(), n.wall.begin(), n.wall.end());
+    n.local = system.declare_local(rows, n.dofs);
+    rows_.push_back(std::move(n));
   }
 }
 
@@ -216,12 +227,14 @@ void MovingWallTerm::add_residual_scale(const Field& field, Eigen::VectorXd& sca
 void MovingWallTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const double c0 = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d
   if (valves_) valves_->update();  // before the rings' flux rows read them (fluid_terms' order)
-  for (size_t k = 0; k < dofs_.size(); ++k) {
-    const std::vector<int>& dofs = dofs_[k];
+  for (size_t k = 0; k < rows_.size(); ++k) {
+    const std::vector<int>& dofs = rows_[k].dofs;
+    const std::vector<int>& wall = rows_[k].wall;
     const bool moving = dofs.size() == 9;
     const bool sticks = !valves_ || !valves_->open(ring_of_node_[k]);
     Eigen::VectorXd R(6);
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(6, static_cast<Eigen::Index>(dofs.size()));
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(6 + wall.size()),
+                                              static_cast<Eigen::Index>(dofs.size()));
     K.block<3, 3>(0, 3).setIdentity();
     for (int i = 0; i < 3; ++i) R[i] = state.x[dofs[3 + i]];  // λ on the v row
     if (sticks) {
@@ -233,7 +246,11 @@ void MovingWallTerm::assemble(const MacroState& state, MacroAssembly& out) {
       K.block<3, 3>(3, 3).setIdentity();
     }
     out.add_internal(std::vector<int>(dofs.begin(), dofs.begin() + 6), R);
-    out.add_tangent(local_[k], K);
+    if (!wall.empty()) {  // two-way: the blood pushes the wall with λ
+      out.add_external(wall, R.head<3>());
+      K.block<3, 3>(6, 3) = -Mat3::Identity();
+    }
+    out.add_tangent(rows_[k].local, K);
   }
 }
 

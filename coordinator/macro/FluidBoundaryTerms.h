@@ -11,9 +11,12 @@
 //                        fluxes with an incompressible content, reported)
 //   MovingWallTerm       v_a = v̂_a = ḋ_a at wall nodes by multipliers λ_a:
 //                          R_v,a += λ_a,   R_λa = v_a − ḋ_a   (∂ḋ/∂d by the scheme)
-//                        the wall's motion is given (a prescribed or one-way wall): the
-//                        multiplier does not act back on d (the coupled problem, issue 31,
-//                        shares the unknowns instead). The same term shuts valve rings:
+//                        one-way, the wall's motion is given to the blood; two-way
+//                        (`loads_wall`), λ_a is also the force the blood exerts on the
+//                        wall at its shared node a (Newton's third law):
+//                          R_u,a −= λ_a   (an external force on the wall; K_u,λ = −I)
+//                        so the interface traction balances node by node and the blood's
+//                        pressure loads the wall. The same term shuts valve rings:
 //                        while a ring's valve is shut its nodes stick (v = v̂), while open
 //                        the rows read λ_a = 0 (the ring's flux constraint takes over)
 //   ValveStates          which valves are open: from the current iterate in a step's first
@@ -132,6 +135,8 @@ class MovingWallTerm final : public MacroTerm {
   /// rows each). With `valves`, node k sticks only while ring ring_of_node[k]'s valve is shut.
   MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes, std::string multiplier = "fluid_wall_multiplier",
                  std::shared_ptr<ValveStates> valves = nullptr, std::vector<int> ring_of_node = {});
+  /// Two-way: the multipliers also act on the wall's displacement (see above).
+  static std::unique_ptr<MovingWallTerm> loading_wall(const MacroPartition& partition, std::vector<int> nodes);
   std::string name() const override { return valves_ ? "fluid valve closure" : "fluid moving wall"; }
   void declare(MacroSystem& system) override;
   /// 1 per multiplier (the measure is |v − v̂| in velocity units).
@@ -146,9 +151,14 @@ class MovingWallTerm final : public MacroTerm {
   std::string multiplier_;
   std::shared_ptr<ValveStates> valves_;
   std::vector<int> ring_of_node_;
-  const Field *lambda_ = nullptr, *v_ = nullptr, *d_ = nullptr;
-  std::vector<std::vector<int>> dofs_;  ///< per node: v (3), λ (3), d (3)
-  std::vector<int> local_;
+  bool loads_wall_ = false;
+  const Field *lambda_ = nullptr, *v_ = nullptr, *d_ = nullptr, *u_ = nullptr;
+  struct Node {
+    std::vector<int> dofs;  ///< v (3), λ (3), then d (3) if the mesh moves there
+    std::vector<int> wall;  ///< two-way: the wall's displacement DOFs (3) at the node, or none
+    int local = -1;         ///< rows v, λ (and the wall's); columns dofs
+  };
+  std::vector<Node> rows_;
 };
 
 class PressureLevelTerm final : public MacroTerm {

@@ -114,6 +114,12 @@ struct FluidSetup {
   Vec3 body_force = Vec3::Zero();    ///< per unit mass
   std::vector<FluidBoundary> boundaries;
   std::optional<MeshMotionSetup> mesh_motion;  ///< none: a fixed (Eulerian) fluid mesh
+  /// The moving walls' multipliers (the force the wall exerts on the blood) act back on
+  /// the wall's displacement equations: R_u,a −= λ_a (fluid_scene.h).
+  bool two_way = false;
+  /// The blood's tangent with respect to the mesh motion (NavierStokesTerm.h); the
+  /// reader turns it on with two_way, where the wall's convergence needs it.
+  bool shape_derivatives = false;
   /// The velocity at t_start at reference point X (empty: at rest).
   std::function<Vec3(const Vec3& X)> initial_velocity;
   double rtol = 1e-8;

@@ -7,9 +7,10 @@
 namespace fe2 {
 
 NavierStokesTerm::NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind,
-                                   NewtonianFluid fluid, Vec3 body_force, double residual_pressure)
+                                   NewtonianFluid fluid, Vec3 body_force, double residual_pressure,
+                                   bool shape_derivatives)
     : mesh_(mesh), elements_(std::move(elements)), kind_(kind), fluid_(fluid), body_force_(body_force),
-      residual_pressure_(residual_pressure) {}
+      residual_pressure_(residual_pressure), shape_derivatives_(shape_derivatives) {}
 
 void NavierStokesTerm::declare(MacroSystem& system) {
   v_ = &system.field("fluid_velocity");
@@ -21,8 +22,16 @@ void NavierStokesTerm::declare(MacroSystem& system) {
     const std::vector<int> vertices(mesh_.tets[e].begin(), mesh_.tets[e].end());
     const std::vector<int> p = p_->node_dofs(vertices);
     dofs.insert(dofs.end(), p.begin(), p.end());
+    if (shape_derivatives_ && d_) {
+      // Columns v, p, then d at every node (the mesh moves on the whole fluid).
+      std::vector<int> columns = dofs;
+      mesh_dofs_.push_back(d_->node_dofs(nodes_.back()));
+      columns.insert(columns.end(), mesh_dofs_.back().begin(), mesh_dofs_.back().end());
+      local_.push_back(system.declare_local(dofs, columns));
+    } else {
+      local_.push_back(system.declare_local(dofs));
+    }
     dofs_.push_back(std::move(dofs));
-    local_.push_back(system.declare_local(dofs_.back()));
   }
 }
 
@@ -76,6 +85,7 @@ void NavierStokesTerm::gather_element(size_t k, const MacroState& state, FluidEl
 
 void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const double dv_rate_dv = state.rate(*v_).dv_dx;
+  const double dd_dd = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d
   FluidElementState s;
   s.dv_rate_dv = dv_rate_dv;
   s.dt = dv_rate_dv > 0.0 ? state.dt : 0.0;  // steady: no transient term in τ_M
@@ -90,8 +100,32 @@ void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
       throw NumericalError(fmt::format("{} (element {})", e.what(), elements_[k]));
     }
     out.add_internal(dofs_[k], R);
+    if (!mesh_dofs_.empty()) K = with_shape_derivatives(s, R, K, dd_dd);
     out.add_tangent(local_[k], K);
   }
+}
+
+Eigen::MatrixXd NavierStokesTerm::with_shape_derivatives(const FluidElementState& s, const Eigen::VectorXd& R,
+                                                         const Eigen::MatrixXd& K, double dd_dd) const {
+  const Eigen::Index n = s.x.cols(), rows = K.rows();
+  Eigen::MatrixXd KK(rows, K.cols() + 3 * n);
+  KK.leftCols(K.cols()) = K;
+  double size = 0.0;  // the element's largest vertex distance
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b) size = std::max(size, (s.x.col(a) - s.x.col(b)).norm());
+  const double h = 1e-7 * size;
+  FluidElementState moved = s;
+  Eigen::VectorXd Rh;
+  for (Eigen::Index b = 0; b < n; ++b)
+    for (int j = 0; j < 3; ++j) {
+      moved.x(j, b) += h;
+      moved.w(j, b) += dd_dd * h;
+      navier_stokes_element(kind_, fluid_, moved, Rh, nullptr);
+      KK.col(K.cols() + 3 * b + j) = (Rh - R) / h;
+      moved.x(j, b) = s.x(j, b);
+      moved.w(j, b) = s.w(j, b);
+    }
+  return KK;
 }
 
 void NavierStokesTerm::observe(const MacroState& state, std::vector<Observable>& out) const {

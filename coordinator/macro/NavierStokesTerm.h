@@ -3,6 +3,15 @@
 // of the partition, on the current ALE geometry x = X + d (d the mesh_displacement field
 // when the scene has one, else 0) with the mesh velocity v̂ = ḋ, and the field's rate
 // ∂v/∂t|_χ from its time scheme.
+//
+// Shape derivatives (`shape_derivatives`, on when the blood loads the wall: two-way
+// coupling): the residual depends on the mesh motion d through the geometry x = X + d
+// and the mesh velocity v̂ = ḋ, so with d following the wall the tangent needs
+//   ∂R_e/∂d_b = ∂R_e/∂x_b + (∂ḋ/∂d) ∂R_e/∂v̂_b
+// (the blood's pressure on a moving wall is a follower load: without this block Newton
+// loses the load stiffness and, on a soft wall, diverges). Taken by forward differences
+// of the element residual, x_b and v̂_b moved together by h = 1e-7 of the element's
+// size: 3n residual evaluations per element, every term of every element kind included.
 #include "common/fluid/navier_stokes_element.h"
 #include "common/mesh/TetMesh.h"
 #include "coordinator/macro/MacroTerm.h"
@@ -14,7 +23,7 @@ class NavierStokesTerm final : public MacroTerm {
   /// `residual_pressure`: the pressure whose nodal forces floor the momentum residual's
   /// reference (a flow whose forces all vanish, at rest or uniform, still converges).
   NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, NewtonianFluid fluid,
-                   Vec3 body_force, double residual_pressure);
+                   Vec3 body_force, double residual_pressure, bool shape_derivatives = false);
   std::string name() const override { return "navier-stokes"; }
   void declare(MacroSystem& system) override;
   /// ∫ N_p dV per pressure DOF: the continuity residual's scale (a mean |div v|); and
@@ -27,15 +36,20 @@ class NavierStokesTerm final : public MacroTerm {
  private:
   /// Element k's geometry and nodal fields at `state` (s's data; its scheme's scalars kept).
   void gather_element(size_t k, const MacroState& state, FluidElementState& s) const;
+  /// [K | ∂R/∂d] of an element at s, whose residual is R (see above).
+  Eigen::MatrixXd with_shape_derivatives(const FluidElementState& s, const Eigen::VectorXd& R, const Eigen::MatrixXd& K,
+                                         double dd_dd) const;
   const TetMesh& mesh_;
   std::vector<int> elements_;
   FluidElementKind kind_;
   NewtonianFluid fluid_;
   Vec3 body_force_;
   double residual_pressure_;
+  bool shape_derivatives_;
   const Field *v_ = nullptr, *p_ = nullptr, *d_ = nullptr;
   std::vector<std::vector<int>> nodes_, dofs_;  ///< per element: its nodes; its v then p DOFs
   std::vector<int> local_;
+  std::vector<std::vector<int>> mesh_dofs_;  ///< shape derivatives: per element, d's DOFs (3 per node)
 };
 
 }  // namespace fe2

@@ -190,7 +190,7 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
       elements.push_back(e);
   std::vector<std::unique_ptr<MacroTerm>> terms;
   terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.fluid, setup.body_force,
-                                                     setup.residual_pressure));
+                                                     setup.residual_pressure, setup.shape_derivatives));
   std::vector<OpenBoundaryTerm::Boundary> open;
   std::vector<FluxConstraintTerm::Boundary> flux;
   const std::shared_ptr<ValveStates> valves = valve_states(setup, cavities);
@@ -214,7 +214,8 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));
   if (setup.enclosed()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
   if (std::vector<int> walls = moving_wall_nodes(mesh, setup); !walls.empty())
-    terms.push_back(std::make_unique<MovingWallTerm>(partition, std::move(walls)));
+    terms.push_back(setup.two_way ? MovingWallTerm::loading_wall(partition, std::move(walls))
+                                  : std::make_unique<MovingWallTerm>(partition, std::move(walls)));
   if (setup.mesh_motion)
     terms.push_back(std::make_unique<MeshMotionTerm>(mesh, elements, setup.mesh_motion->kind,
                                                      setup.mesh_motion->stiffening));

@@ -25,7 +25,9 @@
 //              (FluidBoundary::Valve) while that valve is open; while it is shut the
 //              ring's nodes stick (v = v̂) and λ = 0. The state is held for a step.
 //   moving_wall v = v̂ at the set's nodes (those not under a velocity condition), by a
-//              multiplier per node and component: the force the wall exerts on the blood
+//              multiplier per node and component: the force the wall exerts on the blood;
+//              with `coupling: two_way` its opposite loads the wall at the shared node
+//              (one Newton loop over wall and blood: the monolithic FSI of paper §II-A)
 // Enclosed fluid (no pressure face): the pressure is fixed by ∫p dV = 0 through a
 // Lagrange multiplier (fluid_pressure_level), never by pinning a node, so the answer
 // does not depend on the numbering; a flux face does not fix it (its multiplier moves
