@@ -132,11 +132,16 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
     const bool walls = std::any_of(s.boundaries.begin(), s.boundaries.end(),
                                    [](const FluidBoundary& b) { return b.kind == FluidBoundary::Kind::moving_wall; });
     if (!walls) node.fail("coupling", "\"one_way\" (two_way couples the blood's moving_wall sets to the wall: there are none)");
-    // The circulation's cavity term loads its surface with the lumped pressure p_c: with
-    // the blood's own pressure on the same wall it would be loaded twice.
+    // Each of the circulation's cavities is then filled with the blood its valve rings
+    // name (CavityPressureTerm.h): the blood, not a lumped pressure, loads its wall.
     if (spec.circulation)
-      node.fail("coupling", "\"one_way\" with /circulation (its lumped cavity pressures load the wall; two_way blood "
-                            "loads it with its own pressure: only one of them may)");
+      for (size_t c = 0; c < spec.circulation->cavity_names().size(); ++c)
+        if (std::none_of(s.boundaries.begin(), s.boundaries.end(),
+                         [&](const FluidBoundary& b) { return b.valve && b.valve->cavity == static_cast<int>(c); }))
+          node.fail("coupling", fmt::format("\"one_way\", or valve rings for the circulation's cavity '{}' (two_way "
+                                            "blood fills every cavity of the circulation and passes its flows through "
+                                            "the rings)",
+                                            spec.circulation->cavity_names()[c]));
   }
   node.finish();
   return setup;

@@ -142,7 +142,7 @@ double Circulation::node_pressure(int k, double t, std::span<const double> p_cav
 
 void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
                            std::span<const double> y_n, std::span<const double> y,
-                           Evaluation& ev) const {
+                           Evaluation& ev, const std::vector<char>& shut_link) const {
   const int m = unknowns_, nc = cavities(), nl = static_cast<int>(links_.size());
   const int nn = static_cast<int>(nodes_.size());
   // Each node's pressure and its derivative: dp/dy_u = a (u = its unknown) or dp/dp_c = 1.
@@ -177,6 +177,7 @@ void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
         g = 1.0 / l.R;
         break;
       case LinkKind::valve: {
+        if (shut_link[static_cast<size_t>(e)]) break;  // held shut: Q = 0
         const ValveFlow f = valve_flow(l.valve, dp);
         ev.Q[e] = f.Q;
         g = f.dQ;
@@ -227,7 +228,20 @@ void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
 
 CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p_cav,
                               std::span<const double> committed, std::span<double> current) const {
+  return step(t_new, dt, p_cav, committed, current, HeldShut{});
+}
+
+CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p_cav,
+                              std::span<const double> committed, std::span<double> current,
+                              const HeldShut& held) const {
   const int m = unknowns_, nc = cavities(), nl = static_cast<int>(links_.size());
+  std::vector<char> shut_link(static_cast<size_t>(nl), 0);
+  for (int c = 0; c < nc; ++c) {
+    if (static_cast<int>(held.inflow.size()) > c && held.inflow[static_cast<size_t>(c)])
+      shut_link[static_cast<size_t>(inflow_valve_[c])] = 1;
+    if (static_cast<int>(held.outflow.size()) > c && held.outflow[static_cast<size_t>(c)])
+      shut_link[static_cast<size_t>(outflow_valve_[c])] = 1;
+  }
   FE2_CHECK(static_cast<int>(committed.size()) == state_size() &&
                 static_cast<int>(current.size()) == state_size() &&
                 static_cast<int>(p_cav.size()) == nc,
@@ -252,7 +266,7 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
   int it = 0;
   double previous = std::numeric_limits<double>::infinity();
   for (;; ++it) {
-    evaluate(t_new, dt, p_cav, y_n, y, ev);
+    evaluate(t_new, dt, p_cav, y_n, y, ev, shut_link);
     int worst = 0;
     const double norm = m ? ev.r.cwiseAbs().maxCoeff(&worst) : 0.0;
     if (!std::isfinite(norm))
@@ -308,8 +322,14 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
     const Link& out = links_[outflow_valve_[c]];
     f.Q_in.push_back(ev.Q[inflow_valve_[c]]);
     f.Q_out.push_back(ev.Q[outflow_valve_[c]]);
-    const bool in_open = node_pressure(in.from, t_new, p_cav, y) > node_pressure(in.to, t_new, p_cav, y);
-    const bool out_open = node_pressure(out.from, t_new, p_cav, y) > node_pressure(out.to, t_new, p_cav, y);
+    for (int j = 0; j < nc; ++j) {
+      f.dQin_dp.push_back(dQ(inflow_valve_[c], j));
+      f.dQout_dp.push_back(dQ(outflow_valve_[c], j));
+    }
+    const bool in_open = !shut_link[static_cast<size_t>(inflow_valve_[c])] &&
+                         node_pressure(in.from, t_new, p_cav, y) > node_pressure(in.to, t_new, p_cav, y);
+    const bool out_open = !shut_link[static_cast<size_t>(outflow_valve_[c])] &&
+                          node_pressure(out.from, t_new, p_cav, y) > node_pressure(out.to, t_new, p_cav, y);
     f.inflow_open.push_back(in_open);
     f.outflow_open.push_back(out_open);
     f.phase.push_back(phase(in_open, out_open, p_cav[c] - committed[m + c]));

@@ -42,6 +42,7 @@ struct CavityFlows {
   std::vector<double> Q_net;          ///< per cavity: Q_in − Q_out at t_{n+1} (mm³/s)
   std::vector<double> dQ_dp;          ///< n × n row-major: ∂Q_net,i/∂p_j (mm³/(s·Pa))
   std::vector<double> Q_in, Q_out;    ///< per cavity: through its inflow / outflow valve
+  std::vector<double> dQin_dp, dQout_dp;  ///< n × n row-major: ∂Q_in,i/∂p_j, ∂Q_out,i/∂p_j
   std::vector<bool> inflow_open, outflow_open;  ///< Δp > 0 across the valve
   std::vector<std::string> phase;     ///< per cavity, Circulation::phase()
   std::vector<double> pressures;      ///< per compartment (compartment_names()), Pa
@@ -97,6 +98,14 @@ class Circulation {
   /// naming the compartment if the internal Newton fails.
   CavityFlows step(double t_new, double dt, std::span<const double> p_cav,
                    std::span<const double> committed, std::span<double> current) const;
+  /// Valves held shut whatever their pressure drop (per cavity; empty: none): a 3D model
+  /// whose valve rings are shut for the step (their blood cannot pass) makes the network
+  /// agree, so that what leaves a cavity is what its rings pass.
+  struct HeldShut {
+    std::vector<bool> inflow, outflow;
+  };
+  CavityFlows step(double t_new, double dt, std::span<const double> p_cav, std::span<const double> committed,
+                   std::span<double> current, const HeldShut& held) const;
   /// "filling" (inflow valve open), "ejection" (outflow valve open), "isovolumic
   /// contraction" / "isovolumic relaxation" (both closed; dp ≥ 0 / dp < 0 over the step),
   /// "both valves open" (never in a sane circulation).
@@ -132,7 +141,7 @@ class Circulation {
  private:
   struct Evaluation;
   void evaluate(double t, double dt, std::span<const double> p_cav, std::span<const double> y_n,
-                std::span<const double> y, Evaluation& e) const;
+                std::span<const double> y, Evaluation& e, const std::vector<char>& shut_link) const;
   /// Every compartment's pressure and volume at (t, p_cav, y) into f.pressures, f.volumes.
   void report_compartments(double t, std::span<const double> p_cav, std::span<const double> y,
                            CavityFlows& f) const;

@@ -1,13 +1,55 @@
 #include "coordinator/macro/CavityPressureTerm.h"
 
 #include "common/error.h"
-#include "common/mesh/cavity_volume.h"
 #include "common/fem/follower_pressure.h"
+#include "common/fem/vertex_volumes.h"
+#include "common/mesh/cavity_volume.h"
+#include "coordinator/macro/FluidSetup.h"
+
+#include <algorithm>
+#include <set>
 
 namespace fe2 {
 
+namespace {
+
+/// The circulation cavities named by valve rings of two-way blood.
+std::set<int> blood_cavities(const RunSpec& spec) {
+  std::set<int> named;
+  if (!spec.fluid || !spec.fluid->two_way) return named;
+  for (const FluidBoundary& b : spec.fluid->boundaries)
+    if (b.valve) named.insert(b.valve->cavity);
+  return named;
+}
+
+/// The fluid regions that touch the surface `tris`: the blood of that cavity.
+std::set<int> regions_touching(const RunSpec& spec, const std::vector<std::array<int, 3>>& tris) {
+  std::set<std::array<int, 3>> faces;
+  for (auto t : tris) {
+    std::sort(t.begin(), t.end());
+    faces.insert(t);
+  }
+  const std::vector<int>& fluid = spec.fluid->regions;
+  std::set<int> touching;
+  for (int e = 0; e < spec.mesh.num_tets(); ++e) {
+    const int region = spec.mesh.region[static_cast<size_t>(e)];
+    if (std::find(fluid.begin(), fluid.end(), region) == fluid.end()) continue;
+    for (int opp = 0; opp < 4; ++opp) {
+      std::array<int, 3> f{};
+      for (int a = 0, k = 0; a < 4; ++a)
+        if (a != opp) f[static_cast<size_t>(k++)] = spec.mesh.tets[static_cast<size_t>(e)][static_cast<size_t>(a)];
+      std::sort(f.begin(), f.end());
+      if (faces.count(f)) touching.insert(region);
+    }
+  }
+  return touching;
+}
+
+}  // namespace
+
 CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, const MacroPartition& partition)
     : spec_(spec), circulation_(*spec.circulation), owns_rows_(partition.owns_globals()) {
+  const std::set<int> with_blood = blood_cavities(spec);
   committed_.assign(circulation_.state_size(), 0.0);
   circulation_.initial_state(committed_);
   current_ = committed_;
@@ -20,6 +62,17 @@ CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, const MacroPartition
     const CavityVolume v = cavity_volume(spec.mesh, cav.surface, u0);
     for (const auto& [dof, _] : v.dV_du) cav.volume_nodal.push_back(dof);
     V_ref_.push_back(v.volume);
+    cav.blood = with_blood.count(static_cast<int>(cavities_.size())) > 0;
+    if (cav.blood) {
+      const std::set<int> regions = regions_touching(spec, spec.mesh.faces.at(cav.surface));
+      if (regions.empty())
+        throw InputError(fmt::format("/cavities/{}: surface '{}' touches no fluid region, expected the blood "
+                                     "whose valve rings name this cavity to fill it",
+                                     spec.cavities[c].first, cav.surface));
+      for (int e : partition.elements())
+        if (regions.count(spec.mesh.region[static_cast<size_t>(e)])) cav.blood_elements.push_back(e);
+      cav.triangles.clear();  // the blood loads the wall
+    }
     cavities_.push_back(std::move(cav));
   }
   V_n_ = V_ref_;
@@ -40,6 +93,16 @@ void CavityPressureTerm::declare(MacroSystem& system) {
       f.local_up = system.declare_local(f.dofs, {cav.dof});
       cav.faces.push_back(std::move(f));
     }
+    if (cav.blood) {
+      const Field& p = system.field("fluid_pressure");
+      for (int e : cav.blood_elements) {
+        std::vector<int> dofs{cav.dof};
+        for (int a : spec_.mesh.tets[static_cast<size_t>(e)]) dofs.push_back(p.node_dof(a));
+        cav.blood_local.push_back(system.declare_local({cav.dof}, dofs));
+        cav.blood_dofs.push_back(std::move(dofs));
+      }
+      continue;  // no volume row
+    }
     if (!owns_rows_) continue;
     // cavity_volume() numbers ū node-major over the whole mesh (3a + i).
     for (int d : cav.volume_nodal) cav.volume_dofs.push_back(u_->node_dof(d / 3, d % 3));
@@ -53,10 +116,13 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
   std::vector<double> p(n);
   for (int i = 0; i < n; ++i) p[i] = state.x[cavity_dofs_[i]];
   const bool inflating = spec_.inflating(state.time);
+  inflating_ = inflating;
   // Every coordinator advances the (small) circulation, so that its flows and valve
   // states are known wherever a term reads them (valve rings); the rows are the owner's.
   flows_ = inflating ? circulation_.at_rest(0.0, p, committed_)
-                     : circulation_.step(state.time, state.dt, p, committed_, current_);
+                     : circulation_.step(state.time, state.dt, p, committed_, current_,
+                                         held_ ? held_() : Circulation::HeldShut{});
+  assemble_blood_rows(state, out);
   Eigen::VectorXd f1;
   Eigen::MatrixXd dfdx1;
   std::vector<Vec3> x;
@@ -72,7 +138,7 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
       out.add_tangent(f.local_up, -f1);
       out.add_external(f.dofs, p[i] * f1);
     }
-    if (!owns_rows_ && !inflating) continue;
+    if ((!owns_rows_ && !inflating) || (cav.blood && !inflating)) continue;
     const CavityVolume v = cavity_volume(spec_.mesh, cav.surface, u_->at_every_node(state.x, spec_.mesh.num_nodes()));
     if (inflating) {
       // The atrium holds its pressure while the wall inflates: what the cavity takes in
@@ -81,6 +147,7 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
       flows_.inflow_open[i] = true;
       continue;
     }
+    if (cav.blood) continue;  // its rows: assemble_blood_rows
     // R_c = V_c(ū) − V_c,n − Δt Q_net,c(p)
     Eigen::MatrixXd row(1, static_cast<Eigen::Index>(v.dV_du.size()));
     for (size_t k = 0; k < v.dV_du.size(); ++k) row(0, static_cast<Eigen::Index>(k)) = v.dV_du[k].second;
@@ -94,8 +161,27 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
   }
   Eigen::MatrixXd Kpp(n, n);
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) Kpp(i, j) = -state.dt * flows_.dQ(i, j);
+    for (int j = 0; j < n; ++j) Kpp(i, j) = cavities_[static_cast<size_t>(i)].blood ? 0.0 : -state.dt * flows_.dQ(i, j);
   out.add_tangent(local_pp_, Kpp);
+}
+
+void CavityPressureTerm::assemble_blood_rows(const MacroState& state, MacroAssembly& out) const {
+  if (spec_.inflating(state.time)) return;  // p_c prescribed: assemble_inflation
+  for (const Cavity& cav : cavities_)
+    for (size_t k = 0; k < cav.blood_elements.size(); ++k) {
+      // ∫_e (p_c − p) dV = Σ_b m_b (p_c − p_b), m_b = ∫N_b dV (reference)
+      const Eigen::Vector4d m = vertex_volumes(spec_.mesh, cav.blood_elements[k]);
+      const std::vector<int>& dofs = cav.blood_dofs[k];
+      double r = 0.0;
+      Eigen::MatrixXd K(1, 5);
+      K(0, 0) = m.sum();
+      for (int b = 0; b < 4; ++b) {
+        r += m[b] * (state.x[dofs[0]] - state.x[dofs[static_cast<size_t>(b) + 1]]);
+        K(0, b + 1) = -m[b];
+      }
+      out.add_internal({dofs[0]}, Eigen::VectorXd::Constant(1, r));
+      out.add_tangent(cav.blood_local[k], K);
+    }
 }
 
 void CavityPressureTerm::assemble_inflation(double t, const std::vector<double>& p, MacroAssembly& out) const {

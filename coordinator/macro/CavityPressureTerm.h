@@ -25,6 +25,17 @@
 // inflow through an open inflow valve (Q_in = Q_net = (V_c − V_c,n)/Δt): the blood a
 // cavity with a fluid receives through its inflow ring.
 //
+// A cavity filled with blood that loads the wall (fluid.coupling "two_way", the cavity
+// named by valve rings) takes neither the lumped load nor the volume row: the blood loads
+// the wall, and its rings pass the circulation's flows (the volume balance). Its p_c is
+// the blood's mean pressure over the cavity's fluid elements Ω_b,c (reference volumes),
+//   R_c = ∫_Ωb,c (p_c − p) dV,
+// the pressure the circulation sees; its valves' flows at p_c drive the rings, with
+// ∂Q/∂p_c in the rings'
+// rows (CavityFlows::dQin_dp, dQout_dp); the valves its rings hold shut for the step are
+// shut in the circulation too (hold_valves). While inflating p_c is prescribed as above
+// and the inflow ring holds it.
+//
 // The pressure load on a face is assembled by the coordinator owning the face's tet; the
 // volume rows R_c need the whole surface (and the circulation), so the coordinator owning
 // the global unknowns assembles them (MacroPartition). MUMPS sums the distributed input.
@@ -32,6 +43,8 @@
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
 #include "coordinator/RunSpec.h"
+
+#include <functional>
 
 namespace fe2 {
 
@@ -55,6 +68,16 @@ class CavityPressureTerm final : public MacroTerm {
   const std::vector<double>& committed_volumes() const { return V_n_; }
   /// The reference (unloaded) cavity volumes, to scale the volume residuals.
   const std::vector<double>& reference_volumes() const { return V_ref_; }
+  /// The number of circulation cavities (cavity_pressure's size).
+  int count() const { return static_cast<int>(cavities_.size()); }
+  /// Whether cavity i is filled with two-way blood (see above).
+  bool filled_with_blood(int i) const { return cavities_.at(static_cast<size_t>(i)).blood; }
+  /// The last assembly was of the end-diastolic inflation.
+  bool inflating() const { return inflating_; }
+  /// The valves the blood's rings hold shut for the rest of the step (asked at every
+  /// assembly of a beat step): the circulation shuts them too, so that what leaves a
+  /// cavity filled with blood is what its rings pass.
+  void hold_valves(std::function<Circulation::HeldShut()> held) { held_ = std::move(held); }
 
  private:
   struct Face {
@@ -69,7 +92,13 @@ class CavityPressureTerm final : public MacroTerm {
     std::vector<int> volume_nodal;  ///< the nodal DOFs 3a + i ∂V/∂ū touches (fixed by the mesh)
     std::vector<int> volume_dofs;   ///< the same as DOFs of the displacement field
     int local_pu = -1;
+    bool blood = false;             ///< filled with two-way blood (see above)
+    std::vector<int> blood_elements;  ///< the partition's elements of Ω_b,c
+    std::vector<std::vector<int>> blood_dofs;  ///< per element: p_c, then its 4 pressure DOFs
+    std::vector<int> blood_local;
   };
+  /// The blood's rows R_c = ∫(p_c − p) dV of the cavities filled with it.
+  void assemble_blood_rows(const MacroState& state, MacroAssembly& out) const;
   /// The rows R_c of the end-diastolic inflation (prescribed cavity pressures).
   void assemble_inflation(double t, const std::vector<double>& p, MacroAssembly& out) const;
 
@@ -85,6 +114,8 @@ class CavityPressureTerm final : public MacroTerm {
   std::vector<double> V_n_, V_ref_;
   std::vector<double> p_fill_;  ///< per cavity: the filling pressure of end-diastole
   CavityFlows flows_;
+  bool inflating_ = false;
+  std::function<Circulation::HeldShut()> held_;
 };
 
 }  // namespace fe2

@@ -127,9 +127,21 @@ void FluxConstraintTerm::declare(MacroSystem& system) {
     dofs_.push_back(std::move(dofs));
     local_.push_back(system.declare_local(dofs_.back()));
   }
+  cavity_pressure_ = system.fields().find("cavity_pressure");
   if (owns_globals_)
-    for (size_t b = 0; b < boundaries_.size(); ++b)
-      local_shut_.push_back(boundaries_[b].active ? system.declare_local({lambda_->global_dof(static_cast<int>(b))}) : -1);
+    for (size_t b = 0; b < boundaries_.size(); ++b) {
+      const int dof = lambda_->global_dof(static_cast<int>(b));
+      local_shut_.push_back(boundaries_[b].active ? system.declare_local({dof}) : -1);
+      std::vector<int> columns{dof};
+      if (boundaries_[b].coupling && cavity_pressure_)
+        for (int c = 0; c < cavity_pressure_->size(); ++c) columns.push_back(cavity_pressure_->global_dof(c));
+      local_coupled_.push_back(columns.size() > 1 ? system.declare_local({dof}, columns) : -1);
+    }
+  // The reference areas (the scale of a ring that holds a pressure).
+  area_.assign(boundaries_.size(), 0.0);
+  Eigen::VectorXd scale = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(boundaries_.size()));
+  add_residual_scale(*lambda_, scale);
+  for (size_t b = 0; b < boundaries_.size(); ++b) area_[b] = scale[static_cast<Eigen::Index>(b)];
 }
 
 void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
@@ -143,7 +155,11 @@ void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd&
 
 void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
   std::vector<char> active(boundaries_.size());
-  for (size_t b = 0; b < boundaries_.size(); ++b) active[b] = !boundaries_[b].active || boundaries_[b].active();
+  std::vector<RingCoupling> coupling(boundaries_.size());
+  for (size_t b = 0; b < boundaries_.size(); ++b) {
+    active[b] = !boundaries_[b].active || boundaries_[b].active();
+    if (boundaries_[b].coupling) coupling[b] = boundaries_[b].coupling();
+  }
   Eigen::Matrix3Xd x, w;
   for (size_t k = 0; k < faces_.size(); ++k) {
     fluid_face_geometry(mesh_, d_, faces_[k].nodes, state, x, w);
@@ -156,9 +172,11 @@ void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
       const Eigen::VectorXd v = gather(state.x, dofs_[k]).head(nv);
       const double lambda = state.x[dofs_[k].back()];
       R.head(nv) = lambda * s;
-      R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
       K.col(nv).head(nv) = s;
-      K.row(nv).head(nv) = s.transpose();
+      if (coupling[static_cast<size_t>(faces_[k].boundary)].holds_pressure_of < 0) {  // a flux row
+        R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
+        K.row(nv).head(nv) = s.transpose();
+      }
     }
     out.add_internal(dofs_[k], R);
     out.add_tangent(local_[k], K);
@@ -166,7 +184,21 @@ void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
   if (!owns_globals_) return;
   for (size_t b = 0; b < boundaries_.size(); ++b) {
     const int dof = lambda_->global_dof(static_cast<int>(b));
-    if (active[b]) {
+    if (active[b] && local_coupled_[b] >= 0) {  // Q(p_c), or λ = p_c
+      const RingCoupling& rc = coupling[b];
+      const int n = cavity_pressure_->size();
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(1, n + 1);
+      if (rc.holds_pressure_of >= 0) {
+        const double p = state.x[cavity_pressure_->global_dof(rc.holds_pressure_of)];
+        out.add_internal({dof}, Eigen::VectorXd::Constant(1, area_[b] * (state.x[dof] - p)));
+        K(0, 0) = area_[b];
+        K(0, 1 + rc.holds_pressure_of) = -area_[b];
+      } else {
+        out.add_external({dof}, Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
+        for (int c = 0; c < n && c < static_cast<int>(rc.dQ_dp.size()); ++c) K(0, 1 + c) = -rc.dQ_dp[static_cast<size_t>(c)];
+      }
+      out.add_tangent(local_coupled_[b], K);
+    } else if (active[b]) {
       out.add_external({dof}, Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
     } else {  // a shut valve's ring: λ = 0 (its nodes stick, MovingWallTerm)
       out.add_internal({dof}, Eigen::VectorXd::Constant(1, state.x[dof]));

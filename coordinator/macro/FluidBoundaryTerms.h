@@ -5,7 +5,10 @@
 //                        stabilization where β > 0 (common/fluid/fluid_boundary.h)
 //   FluxConstraintTerm   flux faces k: the multiplier λ_k acts as the traction −λ_k n,
 //                          R_v,a += λ_k ∫N_a n da,   R_λk = Σ_a (v_a − v̂_a)·∫N_a n da − Q_k(t)
-//                        (a symmetric saddle block; λ_k is the face's pressure)
+//                        (a symmetric saddle block; λ_k is the face's pressure). A two-way
+//                        valve ring's Q_k is its valve's flow at the cavity pressures p_c,
+//                        with −∂Q_k/∂p_c in its row; while the wall is inflated the inflow
+//                        ring holds p_c instead: R_λk = A_k (λ_k − p_c)
 //   PressureLevelTerm    ∫ p dV = 0 by a multiplier μ: R_p,b += μ ∫N_b, R_μ = ∫ p dV
 //                        (so ∫ q div v = μ ∫ q: μ V is any mismatch of the boundary's
 //                        fluxes with an incompressible content, reported)
@@ -77,10 +80,18 @@ class OpenBoundaryTerm final : public MacroTerm {
 
 class FluxConstraintTerm final : public MacroTerm {
  public:
+  /// A two-way valve ring's dependence on the circulation's cavity pressures p_c.
+  struct RingCoupling {
+    std::vector<double> dQ_dp;  ///< ∂Q/∂p_c per cavity (the row's −∂Q/∂p_c columns)
+    int holds_pressure_of = -1; ///< ≥ 0: the ring is a pressure face at that cavity's p_c
+                                ///< instead (the inflow ring while the wall is inflated):
+                                ///< R_λ = A (λ − p_c), A its area
+  };
   struct Boundary {
     std::string set;
     std::function<double(double)> flux;
     std::function<bool()> active;  ///< empty: always; else a valve ring's (shut: λ = 0)
+    std::function<RingCoupling()> coupling;  ///< empty: Q depends on time alone
   };
   FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
                      std::vector<Boundary> boundaries);
@@ -101,6 +112,9 @@ class FluxConstraintTerm final : public MacroTerm {
   std::vector<std::vector<int>> dofs_;  ///< per face: velocity DOFs, then λ
   std::vector<int> local_;
   std::vector<int> local_shut_;  ///< per boundary: the λλ entry of a shut valve's row (−1: never shut)
+  const Field* cavity_pressure_ = nullptr;  ///< the circulation's p_c (coupled rings)
+  std::vector<int> local_coupled_;  ///< per boundary: row λ_b, columns λ_b and every p_c (−1: uncoupled)
+  std::vector<double> area_;        ///< per boundary: its reference area
 };
 
 /// Per valve ring, open or shut (see above). The valve closure term updates the states
@@ -120,6 +134,8 @@ class ValveStates {
   }
   /// The next assembly starts a step (after a commit or a rollback).
   void release() { iteration_ = 0; }
+  /// The states are held: this step's free iterations are over.
+  bool holding() const { return iteration_ >= free_iterations_ && !open_.empty(); }
 
  private:
   std::function<std::vector<bool>()> decide_;

@@ -126,8 +126,11 @@ struct FluidSetup {
   /// The pressure whose nodal forces floor the momentum residual's reference: below
   /// rtol times these the flow is converged even when every force vanishes.
   double residual_pressure = 1.0;
-  /// No pressure or traction boundary: the pressure level needs its constraint.
+  /// No pressure or traction boundary.
   bool enclosed() const;
+  /// Enclosed and one-way: nothing sets the pressure level but its constraint (two-way,
+  /// the wall's compliance and the rings' valve laws set it).
+  bool needs_pressure_level() const { return enclosed() && !two_way; }
   /// The flux boundaries' indices into `boundaries`, in order (their multipliers' order).
   std::vector<int> flux_boundaries() const;
 };

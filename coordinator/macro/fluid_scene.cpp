@@ -106,7 +106,7 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
   if (setup.mesh_motion)
     ext.fields.push_back({"mesh_displacement", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
                           ResidualNorm::relative_to_load, setup.rtol});
-  if (setup.enclosed())
+  if (setup.needs_pressure_level())
     ext.fields.push_back({"fluid_pressure_level", 1, FieldSpace::global, {}, 1, TimeScheme::none,
                           ResidualNorm::scaled_max, setup.rtol});
   if (setup.initial_velocity)
@@ -179,11 +179,30 @@ std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityP
   });
 }
 
+/// A two-way ring's Q(p_c) derivatives, or (inflow ring, wall inflating) the cavity
+/// pressure it holds.
+std::function<FluxConstraintTerm::RingCoupling()> ring_coupling(const FluidBoundary::Valve& valve,
+                                                                 const CavityPressureTerm& cavities) {
+  return [valve, &cavities] {
+    FluxConstraintTerm::RingCoupling rc;
+    const size_t n = static_cast<size_t>(cavities.count());
+    if (cavities.inflating()) {
+      if (!valve.outflow) rc.holds_pressure_of = valve.cavity;
+      return rc;
+    }
+    const std::vector<double>& dQ = valve.outflow ? cavities.flows().dQout_dp : cavities.flows().dQin_dp;
+    // Q of an inflow ring is −Q_in (out of the fluid).
+    const double sign = valve.outflow ? 1.0 : -1.0;
+    for (size_t j = 0; j < n; ++j) rc.dQ_dp.push_back(sign * dQ[static_cast<size_t>(valve.cavity) * n + j]);
+    return rc;
+  };
+}
+
 }  // namespace
 
 std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
                                                     const MacroPartition& partition,
-                                                    const CavityPressureTerm* cavities) {
+                                                    CavityPressureTerm* cavities) {
   std::vector<int> elements;
   for (int e : partition.elements())
     if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
@@ -201,7 +220,25 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
     if (b.kind != FluidBoundary::Kind::flux) continue;
     std::function<bool()> active;
     if (b.valve) active = [valves, k = ring++] { return valves->open(k); };
-    flux.push_back({b.set, flux_of(b, cavities), active});
+    std::function<FluxConstraintTerm::RingCoupling()> coupling;
+    if (b.valve && setup.two_way && cavities) coupling = ring_coupling(*b.valve, *cavities);
+    flux.push_back({b.set, flux_of(b, cavities), active, coupling});
+  }
+  // Two-way, the circulation shuts what the rings hold shut (what leaves the cavity is
+  // what they pass).
+  if (valves && setup.two_way && cavities) {
+    std::vector<FluidBoundary::Valve> rings;
+    for (const FluidBoundary& b : setup.boundaries)
+      if (b.valve) rings.push_back(*b.valve);
+    cavities->hold_valves([valves, rings, n = static_cast<size_t>(cavities->count())] {
+      Circulation::HeldShut held;
+      if (!valves->holding()) return held;
+      held.inflow.assign(n, false);
+      held.outflow.assign(n, false);
+      for (size_t k = 0; k < rings.size(); ++k)
+        if (!valves->open(static_cast<int>(k))) (rings[k].outflow ? held.outflow : held.inflow)[static_cast<size_t>(rings[k].cavity)] = true;
+      return held;
+    });
   }
   // The valve closure updates the valves' states: before the rings' flux rows.
   if (const auto rings = valve_ring_nodes(mesh, setup); !rings.empty()) {
@@ -212,7 +249,7 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   }
   if (!open.empty()) terms.push_back(std::make_unique<OpenBoundaryTerm>(mesh, partition, setup.regions, open, setup.fluid.density));
   if (!flux.empty()) terms.push_back(std::make_unique<FluxConstraintTerm>(mesh, partition, setup.regions, flux));
-  if (setup.enclosed()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
+  if (setup.needs_pressure_level()) terms.push_back(std::make_unique<PressureLevelTerm>(mesh, elements));
   if (std::vector<int> walls = moving_wall_nodes(mesh, setup); !walls.empty())
     terms.push_back(setup.two_way ? MovingWallTerm::loading_wall(partition, std::move(walls))
                                   : std::make_unique<MovingWallTerm>(partition, std::move(walls)));

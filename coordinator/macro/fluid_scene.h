@@ -61,6 +61,6 @@ std::vector<std::pair<int, int>> valve_ring_nodes(const TetMesh& mesh, const Flu
 /// before these terms, so its flows are the current iterate's).
 std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const FluidSetup& setup,
                                                     const MacroPartition& partition,
-                                                    const CavityPressureTerm* cavities = nullptr);
+                                                    CavityPressureTerm* cavities = nullptr);
 
 }  // namespace fe2

@@ -94,7 +94,7 @@ std::vector<std::unique_ptr<MacroTerm>> scene_terms(const RunSpec& spec, const M
   terms.push_back(std::make_unique<PointStressTerm>(spec.mesh, points, wall, responses));
   if (spec.dynamic) terms.push_back(std::make_unique<InertiaTerm>(spec.mesh, wall, spec.density));
   if (!spec.pressure.empty()) terms.push_back(std::make_unique<FollowerPressureTerm>(spec, partition));
-  const CavityPressureTerm* cavities = nullptr;
+  CavityPressureTerm* cavities = nullptr;
   if (spec.circulation) {
     auto term = std::make_unique<CavityPressureTerm>(spec, partition);
     cavities = term.get();

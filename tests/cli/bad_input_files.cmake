@@ -124,10 +124,10 @@ fe2_cli_test(cli.bad_input.fluid_element_of_other_order 2
 fe2_cli_test(cli.bad_input.fluid_valve_without_circulation 2
              "/fluid/boundaries/4/kind: got \"valve\", expected flux or pressure [(]a valve ring needs /circulation: its flow[)]"
              ARGS validate ${FE2_CLI_BAD}/fluid_valve_without_circulation.json)
-# Two-way blood loads the wall with its pressure: not beside a lumped cavity pressure.
-fe2_cli_test(cli.bad_input.fluid_two_way_with_circulation 2
-             "/fluid/coupling: got \"two_way\", expected \"one_way\" with /circulation [(]its lumped cavity pressures load the wall"
-             ARGS validate ${FE2_CLI_BAD}/fluid_two_way_with_circulation.json)
+# Two-way blood fills every cavity of the circulation: it needs their valve rings.
+fe2_cli_test(cli.bad_input.fluid_two_way_without_rings 2
+             "/fluid/coupling: got \"two_way\", expected \"one_way\", or valve rings for the circulation's cavity 'lv'"
+             ARGS validate ${FE2_CLI_BAD}/fluid_two_way_without_rings.json)
 # The LV generator's own checks of its cavity's rings name the spec path.
 fe2_cli_test(cli.bad_input.lv_cavity_rings_overlap 2
              "/mesh: make_lv_mesh: ring 'mitral' and ring 'aortic': gap = -1.5: expected discs that do not overlap"
