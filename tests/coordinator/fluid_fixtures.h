@@ -4,6 +4,8 @@
 #include "coordinator/Simulation.h"
 #include "coordinator/macro/fluid_scene.h"
 
+#include <gtest/gtest.h>
+
 namespace fe2::test {
 
 /// The Simulation of `spec` with the fluid of `setup` joined (one process).
@@ -23,5 +25,21 @@ struct FluidSimulation {
     return d ? Vec3(m.nodes[node] + sim.state().segment<3>(d->node_dof(node))) : m.nodes[node];
   }
 };
+
+/// Runs the spec `j` on one process (its fluid, if any, from the spec).
+inline RunResult run_spec(const nlohmann::json& j) {
+  const RunSpec spec = read_run_spec(j, "");
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points);
+  return sim.run();
+}
+
+/// The observable `name` of a step (a test failure if it has none).
+inline double observable(const StepRecord& h, const std::string& name) {
+  for (const auto& [n, v] : h.observables)
+    if (n == name) return v;
+  ADD_FAILURE() << "no observable " << name;
+  return 0.0;
+}
 
 }  // namespace fe2::test

@@ -55,19 +55,8 @@ json lv_with_blood(double E, const json& rings, const json& mesh = kGmshMesh) {
           {"output", {{"vtu", false}}}};
 }
 
-RunResult run_scene(const json& j) {
-  const RunSpec spec = read_run_spec(j, "");
-  LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points);
-  return sim.run();
-}
-
-double observable(const StepRecord& h, const std::string& name) {
-  for (const auto& [n, v] : h.observables)
-    if (n == name) return v;
-  ADD_FAILURE() << "no observable " << name;
-  return 0.0;
-}
+using test::observable;
+RunResult run_scene(const json& j) { return test::run_spec(j); }
 
 TEST(LvCavityMesh, BloodFillsTheCavityAndSharesTheEndocardiumWithTheWall) {
   const TetMesh m = read_gmsh_tets(kMesh);

@@ -5,9 +5,7 @@
 // follower pressure P on its endocardium (the lumped load the cavities have without
 // blood). And Newton, with the coupling's tangent, keeps its convergence rate.
 #include "common/mesh/cavity_volume.h"
-#include "coordinator/LocalPoints.h"
-#include "coordinator/RunSpec.h"
-#include "coordinator/Simulation.h"
+#include "tests/coordinator/fluid_fixtures.h"
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/fluid_scene.h"
 #include "coordinator/macro/macro_scene.h"
@@ -70,12 +68,8 @@ json inflated_lv(bool blood, double P, int steps) {
   return j;
 }
 
-RunResult run(const json& j) {
-  const RunSpec spec = read_run_spec(j, "");
-  LocalEvaluator points(spec.models, spec.model_of_points());
-  Simulation sim(spec, points);
-  return sim.run();
-}
+using test::observable;
+RunResult run(const json& j) { return test::run_spec(j); }
 
 TEST(FluidTwoWay, BloodAtRestLoadsTheWallAsItsPressure) {
   const double P = 250.0;
@@ -178,13 +172,6 @@ TEST(FluidTwoWay, CoupledTangentMatchesFiniteDifferences) {
     std::printf("%s: %d free unknowns, ‖K − K_fd‖/‖K_fd‖ = %.2e\n", element, n, error);
     EXPECT_LT(error, 1e-6);
   }
-}
-
-double observable(const StepRecord& h, const std::string& name) {
-  for (const auto& [n, v] : h.observables)
-    if (n == name) return v;
-  ADD_FAILURE() << "no observable " << name;
-  return 0.0;
 }
 
 // Two-way blood with the circulation (CavityPressureTerm's blood mode): the wall is
