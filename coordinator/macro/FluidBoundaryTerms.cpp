@@ -137,11 +137,16 @@ void FluxConstraintTerm::declare(MacroSystem& system) {
         for (int c = 0; c < cavity_pressure_->size(); ++c) columns.push_back(cavity_pressure_->global_dof(c));
       local_coupled_.push_back(columns.size() > 1 ? system.declare_local({dof}, columns) : -1);
     }
-  // The reference areas (the scale of a ring that holds a pressure).
+  // The reference areas of the whole rings, whichever coordinator owns their faces (the
+  // scale of a ring's row while it holds a pressure).
   area_.assign(boundaries_.size(), 0.0);
-  Eigen::VectorXd scale = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(boundaries_.size()));
-  add_residual_scale(*lambda_, scale);
-  for (size_t b = 0; b < boundaries_.size(); ++b) area_[b] = scale[static_cast<Eigen::Index>(b)];
+  for (size_t b = 0; b < boundaries_.size(); ++b)
+    for (const auto& tri : mesh_.faces.at(boundaries_[b].set)) {
+      const std::vector<int> nodes = mesh_.face_nodes(tri);
+      Eigen::Matrix3Xd x(3, static_cast<Eigen::Index>(nodes.size()));
+      for (size_t a = 0; a < nodes.size(); ++a) x.col(static_cast<Eigen::Index>(a)) = mesh_.nodes[nodes[a]];
+      area_[b] += face_normal_integrals(mesh_.order(), x).rowwise().sum().norm();
+    }
 }
 
 void FluxConstraintTerm::add_residual_scale(const Field& field, Eigen::VectorXd& scale) const {
