@@ -302,6 +302,10 @@ void Simulation::rollback() {
 std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
   stepper_.begin_step();
   InversionRecord inversions;
+  // Solves of one step again with a discrete choice a term changed (MacroTerm::accept);
+  // past this many the choice stands (a valve that would chatter).
+  constexpr int kMaxRetries = 3;
+  int retries = 0;
   while (problem_.committed_time() < t_target - 1e-12 * spec_.t_end) {
     const double t_n = problem_.committed_time();
     double t_new = stepper_.next_time(t_n, t_target);
@@ -311,6 +315,15 @@ std::string Simulation::advance(int step, double t_target, StepRecord& rec) {
     const int iterations_before = rec.iterations;
     try {
       if (newton(step, t_new, t_new - t_n, rec)) {
+        if (!problem_.accept(t_new, t_new - t_n) && retries < kMaxRetries) {
+          ++retries;
+          ++rec.retries;
+          spdlog::info("step {} t={:.6g}: the converged state contradicts a valve's state; solving the step again "
+                       "with it changed", step, t_new);
+          rollback();
+          continue;
+        }
+        retries = 0;
         // The units' fields of an output step, from the converged state before it
         // becomes the committed one (worker/unit_fields.h).
         if (!spec_.output_units.empty() && is_output_step(step) && t_new >= t_target - 1e-12 * spec_.t_end)

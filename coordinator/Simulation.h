@@ -51,6 +51,7 @@ struct StepRecord {
   double time = 0.0;
   int iterations = 0;                 ///< Newton iterations of the accepted (sub)steps
   int cutbacks = 0;
+  int retries = 0;                    ///< solves again with a valve's state changed (MacroTerm::accept)
   int line_search_backtracks = 0;     ///< trials newton.line_search rejected
   /// Per macro field (table order): its residual norm per iteration (last substep).
   std::vector<FieldResidualHistory> residuals;

@@ -100,10 +100,14 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
         const auto& names = spec.circulation->cavity_names();
         const auto it = std::find(names.begin(), names.end(), cavity);
         if (it == names.end()) b.fail("cavity", known_names("a cavity of the circulation", cavity, names));
-        s.boundaries.push_back(FluidBoundary::valve_flux(
-            set, {static_cast<int>(it - names.begin()), b.choice("side") == "outflow"}));
+        const FluidBoundary::Valve valve{static_cast<int>(it - names.begin()), b.choice("side") == "outflow"};
+        for (const FluidBoundary& other : s.boundaries)
+          if (other.valve && other.valve->cavity == valve.cavity && other.valve->outflow == valve.outflow)
+            b.fail("side", fmt::format("the {} valve of cavity '{}' once (ring '{}' is already its ring)",
+                                       valve.outflow ? "outflow" : "inflow", cavity, other.set));
+        s.boundaries.push_back(FluidBoundary::valve_flux(set, valve, b.number("backflow")));
       } else {
-        s.boundaries.push_back(FluidBoundary::flux(set, ramped<double>(b, spec)));
+        s.boundaries.push_back(FluidBoundary::flux(set, ramped<double>(b, spec), b.number("backflow")));
       }
     }
     b.finish();

@@ -354,7 +354,8 @@ int run(const RunOptions& o) {
                        "{:.2e}  GMRES {:5d}  refreshes {:4d}{}  elapsed {}, remaining ~{}",
                        r.step + 1, spec.steps, r.time, r.iterations, residuals,
                        r.micro_residuals.back(), r.gmres_iterations, r.refreshes,
-                       r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "",
+                       (r.cutbacks ? fmt::format("  cutbacks {}", r.cutbacks) : "") +
+                           (r.retries ? fmt::format("  valve retries {}", r.retries) : ""),
                        format_duration(elapsed), format_duration(remaining));
           if (sim.is_output_step(r.step)) write_fields(r.step + 1, r.time);
           if (output) output->write_progress(sim, r, wall_seconds() - t0);

@@ -119,8 +119,18 @@ CavityFlows Circulation::at_rest(double t, std::span<const double> p_cav, std::s
   f.dQ_dp.assign(static_cast<size_t>(f.n) * f.n, 0.0);
   f.Q_in.assign(f.n, 0.0);
   f.Q_out.assign(f.n, 0.0);
+  f.dQin_dp.assign(f.dQ_dp.size(), 0.0);
+  f.dQout_dp.assign(f.dQ_dp.size(), 0.0);
+  f.dQin_dport.assign(2 * f.dQ_dp.size(), 0.0);
+  f.dQout_dport.assign(2 * f.dQ_dp.size(), 0.0);
   f.inflow_open.assign(f.n, false);
   f.outflow_open.assign(f.n, false);
+  for (int c = 0; c < f.n; ++c) {
+    const Link& in = links_[static_cast<size_t>(inflow_valve_[c])];
+    const Link& out = links_[static_cast<size_t>(outflow_valve_[c])];
+    f.inflow_drop.push_back(node_pressure(in.from, t, p_cav, state) - node_pressure(in.to, t, p_cav, state));
+    f.outflow_drop.push_back(node_pressure(out.from, t, p_cav, state) - node_pressure(out.to, t, p_cav, state));
+  }
   f.phase.assign(f.n, "inflation");
   report_compartments(t, p_cav, state, f);
   f.flows.assign(links_.size(), 0.0);
@@ -140,9 +150,33 @@ double Circulation::node_pressure(int k, double t, std::span<const double> p_cav
   return 0.0;
 }
 
+Circulation::LinkPorts Circulation::link_ports(const ValvePorts& ports) const {
+  const int nc = cavities();
+  const size_t nl = links_.size();
+  LinkPorts lp{std::vector<char>(nl, 0), std::vector<int>(nl, -1), std::vector<double>(nl, 0.0),
+               std::vector<int>(nl, -1)};
+  auto held = [](const std::vector<bool>& shut, int c) { return static_cast<int>(shut.size()) > c && shut[static_cast<size_t>(c)]; };
+  for (int c = 0; c < nc; ++c)
+    for (const bool outflow : {false, true}) {
+      const size_t e = static_cast<size_t>(outflow ? outflow_valve_[c] : inflow_valve_[c]);
+      if (held(outflow ? ports.outflow_shut : ports.inflow_shut, c)) lp.shut[e] = 1;
+      const std::vector<double>& pressure = outflow ? ports.outflow_pressure : ports.inflow_pressure;
+      if (static_cast<int>(pressure.size()) <= c || std::isnan(pressure[static_cast<size_t>(c)])) continue;
+      const double pi = pressure[static_cast<size_t>(c)];
+      if (!std::isfinite(pi))
+        throw NumericalError(fmt::format("circulation: non-finite {} ring pressure {} in cavity '{}'",
+                                         outflow ? "outflow" : "inflow", pi, cavity_names_[c]));
+      const Link& l = links_[e];
+      lp.node[e] = nodes_[l.from].kind == NodeKind::cavity && nodes_[l.from].cavity == c ? l.from : l.to;
+      lp.pressure[e] = pi;
+      lp.column[e] = (outflow ? 2 : 1) * nc + c;
+    }
+  return lp;
+}
+
 void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
                            std::span<const double> y_n, std::span<const double> y,
-                           Evaluation& ev, const std::vector<char>& shut_link) const {
+                           Evaluation& ev, const LinkPorts& ports) const {
   const int m = unknowns_, nc = cavities(), nl = static_cast<int>(links_.size());
   const int nn = static_cast<int>(nodes_.size());
   // Each node's pressure and its derivative: dp/dy_u = a (u = its unknown) or dp/dp_c = 1.
@@ -156,20 +190,24 @@ void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
       default: break;
     }
   }
+  // Inputs: p_cav (nc), then the ring pressures (2 nc, LinkPorts::column).
   ev.Q.setZero(nl);
   ev.dQ_dy.setZero(nl, m);
-  ev.dQ_dp.setZero(nl, nc);
-  // Adds s · ∂p_k/∂(y, p_cav) to row e of the flow derivatives.
+  ev.dQ_dp.setZero(nl, 3 * nc);
+  // Link e's end k: its pressure, and s · ∂p/∂(y, inputs) added to row e of the flow
+  // derivatives.
+  auto end_pressure = [&](int e, int k) { return ports.node[static_cast<size_t>(e)] == k ? ports.pressure[static_cast<size_t>(e)] : p[k]; };
   auto add_dp = [&](int e, int k, double s) {
-    if (node_unknown_[k] >= 0) ev.dQ_dy(e, node_unknown_[k]) += s * a[k];
+    if (ports.node[static_cast<size_t>(e)] == k) ev.dQ_dp(e, ports.column[static_cast<size_t>(e)]) += s;
+    else if (node_unknown_[k] >= 0) ev.dQ_dy(e, node_unknown_[k]) += s * a[k];
     else if (nodes_[k].kind == NodeKind::cavity) ev.dQ_dp(e, nodes_[k].cavity) += s;
   };
   ev.r.setZero(m);
   ev.J.setZero(m, m);
-  ev.Jp.setZero(m, nc);
+  ev.Jp.setZero(m, 3 * nc);
   for (int e = 0; e < nl; ++e) {
     const Link& l = links_[e];
-    const double dp = p[l.from] - p[l.to];
+    const double dp = end_pressure(e, l.from) - end_pressure(e, l.to);
     double g = 0.0;  // dQ/dΔp of an algebraic link
     switch (l.kind) {
       case LinkKind::resistor:
@@ -177,7 +215,7 @@ void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
         g = 1.0 / l.R;
         break;
       case LinkKind::valve: {
-        if (shut_link[static_cast<size_t>(e)]) break;  // held shut: Q = 0
+        if (ports.shut[static_cast<size_t>(e)]) break;  // held shut: Q = 0
         const ValveFlow f = valve_flow(l.valve, dp);
         ev.Q[e] = f.Q;
         g = f.dQ;
@@ -228,20 +266,13 @@ void Circulation::evaluate(double t, double dt, std::span<const double> p_cav,
 
 CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p_cav,
                               std::span<const double> committed, std::span<double> current) const {
-  return step(t_new, dt, p_cav, committed, current, HeldShut{});
+  return step(t_new, dt, p_cav, committed, current, ValvePorts{});
 }
 
 CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p_cav,
                               std::span<const double> committed, std::span<double> current,
-                              const HeldShut& held) const {
+                              const ValvePorts& valve_ports) const {
   const int m = unknowns_, nc = cavities(), nl = static_cast<int>(links_.size());
-  std::vector<char> shut_link(static_cast<size_t>(nl), 0);
-  for (int c = 0; c < nc; ++c) {
-    if (static_cast<int>(held.inflow.size()) > c && held.inflow[static_cast<size_t>(c)])
-      shut_link[static_cast<size_t>(inflow_valve_[c])] = 1;
-    if (static_cast<int>(held.outflow.size()) > c && held.outflow[static_cast<size_t>(c)])
-      shut_link[static_cast<size_t>(outflow_valve_[c])] = 1;
-  }
   FE2_CHECK(static_cast<int>(committed.size()) == state_size() &&
                 static_cast<int>(current.size()) == state_size() &&
                 static_cast<int>(p_cav.size()) == nc,
@@ -252,6 +283,7 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
     if (!std::isfinite(p_cav[c]))
       throw NumericalError(fmt::format("circulation: non-finite pressure {} in cavity '{}' at t = {} s",
                                        p_cav[c], cavity_names_[c], t_new));
+  const LinkPorts ports = link_ports(valve_ports);
   const std::span<const double> y_n = committed.first(m);
   std::vector<double> y(committed.begin(), committed.begin() + m);
   // Volume scale of the tolerances: the blood the compartments hold.
@@ -266,7 +298,7 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
   int it = 0;
   double previous = std::numeric_limits<double>::infinity();
   for (;; ++it) {
-    evaluate(t_new, dt, p_cav, y_n, y, ev, shut_link);
+    evaluate(t_new, dt, p_cav, y_n, y, ev, ports);
     int worst = 0;
     const double norm = m ? ev.r.cwiseAbs().maxCoeff(&worst) : 0.0;
     if (!std::isfinite(norm))
@@ -303,9 +335,9 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
   f.Q_net.assign(nc, 0.0);
   f.dQ_dp.assign(static_cast<size_t>(nc * nc), 0.0);
   // dy/dp = −J⁻¹ ∂r/∂p (the converged update's sensitivity), then the chain rule.
-  Eigen::MatrixXd dy_dp = Eigen::MatrixXd::Zero(m, nc);
+  Eigen::MatrixXd dy_dp = Eigen::MatrixXd::Zero(m, 3 * nc);
   if (m) dy_dp = ev.J.partialPivLu().solve(-ev.Jp);
-  const Eigen::MatrixXd dQ = ev.dQ_dp + ev.dQ_dy * dy_dp;  // per link × n_cav
+  const Eigen::MatrixXd dQ = ev.dQ_dp + ev.dQ_dy * dy_dp;  // per link × (p_cav, ring pressures)
   for (size_t k = 0; k < nodes_.size(); ++k) {
     if (nodes_[k].kind != NodeKind::cavity) continue;
     const int c = nodes_[k].cavity;
@@ -318,20 +350,30 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
     }
   }
   for (int c = 0; c < nc; ++c) {
-    const Link& in = links_[inflow_valve_[c]];
-    const Link& out = links_[outflow_valve_[c]];
     f.Q_in.push_back(ev.Q[inflow_valve_[c]]);
     f.Q_out.push_back(ev.Q[outflow_valve_[c]]);
     for (int j = 0; j < nc; ++j) {
       f.dQin_dp.push_back(dQ(inflow_valve_[c], j));
       f.dQout_dp.push_back(dQ(outflow_valve_[c], j));
     }
-    const bool in_open = !shut_link[static_cast<size_t>(inflow_valve_[c])] &&
-                         node_pressure(in.from, t_new, p_cav, y) > node_pressure(in.to, t_new, p_cav, y);
-    const bool out_open = !shut_link[static_cast<size_t>(outflow_valve_[c])] &&
-                          node_pressure(out.from, t_new, p_cav, y) > node_pressure(out.to, t_new, p_cav, y);
-    f.inflow_open.push_back(in_open);
-    f.outflow_open.push_back(out_open);
+    for (int j = nc; j < 3 * nc; ++j) {
+      f.dQin_dport.push_back(dQ(inflow_valve_[c], j));
+      f.dQout_dport.push_back(dQ(outflow_valve_[c], j));
+    }
+    // Δp with the cavity at p_c, and across the valve as it passes blood (its ring's π).
+    const auto drop = [&](int e, bool at_port) {
+      const Link& l = links_[static_cast<size_t>(e)];
+      const auto end = [&](int k) {
+        return at_port && ports.node[static_cast<size_t>(e)] == k ? ports.pressure[static_cast<size_t>(e)]
+                                                                   : node_pressure(k, t_new, p_cav, y);
+      };
+      return end(l.from) - end(l.to);
+    };
+    f.inflow_drop.push_back(drop(inflow_valve_[c], false));
+    f.outflow_drop.push_back(drop(outflow_valve_[c], false));
+    f.inflow_open.push_back(!ports.shut[static_cast<size_t>(inflow_valve_[c])] && drop(inflow_valve_[c], true) > 0.0);
+    f.outflow_open.push_back(!ports.shut[static_cast<size_t>(outflow_valve_[c])] && drop(outflow_valve_[c], true) > 0.0);
+    const bool in_open = f.inflow_open.back(), out_open = f.outflow_open.back();
     f.phase.push_back(phase(in_open, out_open, p_cav[c] - committed[m + c]));
   }
   report_compartments(t_new, p_cav, y, f);

@@ -43,7 +43,14 @@ struct CavityFlows {
   std::vector<double> dQ_dp;          ///< n × n row-major: ∂Q_net,i/∂p_j (mm³/(s·Pa))
   std::vector<double> Q_in, Q_out;    ///< per cavity: through its inflow / outflow valve
   std::vector<double> dQin_dp, dQout_dp;  ///< n × n row-major: ∂Q_in,i/∂p_j, ∂Q_out,i/∂p_j
-  std::vector<bool> inflow_open, outflow_open;  ///< Δp > 0 across the valve
+  /// n × 2n row-major: ∂Q_in,i/∂π_j, ∂Q_out,i/∂π_j over the ring pressures π of
+  /// ValvePorts (column j < n: cavity j's inflow ring, n + j: its outflow ring); zero
+  /// columns for valves that see p_c.
+  std::vector<double> dQin_dport, dQout_dport;
+  std::vector<bool> inflow_open, outflow_open;  ///< not held shut, Δp > 0 across the valve
+  /// Δp across each cavity's inflow / outflow valve with the cavity side at p_c (whatever
+  /// ValvePorts says): a shut ring's opening test.
+  std::vector<double> inflow_drop, outflow_drop;
   std::vector<std::string> phase;     ///< per cavity, Circulation::phase()
   std::vector<double> pressures;      ///< per compartment (compartment_names()), Pa
   std::vector<double> volumes;        ///< per compartment, mm³ (0 for fixed and junctions)
@@ -98,14 +105,18 @@ class Circulation {
   /// naming the compartment if the internal Newton fails.
   CavityFlows step(double t_new, double dt, std::span<const double> p_cav,
                    std::span<const double> committed, std::span<double> current) const;
-  /// Valves held shut whatever their pressure drop (per cavity; empty: none): a 3D model
-  /// whose valve rings are shut for the step (their blood cannot pass) makes the network
-  /// agree, so that what leaves a cavity is what its rings pass.
-  struct HeldShut {
-    std::vector<bool> inflow, outflow;
+  /// How a 3D model's valve rings meet the cavities' valves (per cavity; empty vectors:
+  /// none). A valve held shut passes nothing whatever its pressure drop (its ring is shut:
+  /// what leaves a cavity is what its rings pass). An open valve given a ring pressure π
+  /// sees π on the cavity side instead of p_c: the flow through a ring is driven by the
+  /// ring's own pressure (an impedance condition, the stable form of 3D–0D coupling),
+  /// while p_c stays the cavity's mean pressure (phase, report, opening test).
+  struct ValvePorts {
+    std::vector<bool> inflow_shut, outflow_shut;
+    std::vector<double> inflow_pressure, outflow_pressure;  ///< NaN: p_c
   };
   CavityFlows step(double t_new, double dt, std::span<const double> p_cav, std::span<const double> committed,
-                   std::span<double> current, const HeldShut& held) const;
+                   std::span<double> current, const ValvePorts& ports) const;
   /// "filling" (inflow valve open), "ejection" (outflow valve open), "isovolumic
   /// contraction" / "isovolumic relaxation" (both closed; dp ≥ 0 / dp < 0 over the step),
   /// "both valves open" (never in a sane circulation).
@@ -140,8 +151,17 @@ class Circulation {
 
  private:
   struct Evaluation;
+  /// Per link: held shut; the pressure its cavity end sees and that pressure's column
+  /// among the inputs (p_cav, then the ring pressures π: n + j inflow, 2n + j outflow).
+  struct LinkPorts {
+    std::vector<char> shut;
+    std::vector<int> node;        ///< the cavity end that sees a ring pressure, or −1
+    std::vector<double> pressure;
+    std::vector<int> column;
+  };
+  LinkPorts link_ports(const ValvePorts& ports) const;
   void evaluate(double t, double dt, std::span<const double> p_cav, std::span<const double> y_n,
-                std::span<const double> y, Evaluation& e, const std::vector<char>& shut_link) const;
+                std::span<const double> y, Evaluation& e, const LinkPorts& ports) const;
   /// Every compartment's pressure and volume at (t, p_cav, y) into f.pressures, f.volumes.
   void report_compartments(double t, std::span<const double> p_cav, std::span<const double> y,
                            CavityFlows& f) const;

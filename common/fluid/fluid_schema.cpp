@@ -49,13 +49,20 @@ Schema boundary() {
        {"flux",
         {{"set", set_key("named boundary face set of the fluid")},
          {"value", number(nullopt, Range::any(), "flux Q at t_end, out of the fluid (volume/s)")},
-         {"ramp", ramp_schema()}}},
+         {"ramp", ramp_schema()},
+         {"backflow", number(0.0, Range::non_negative(),
+                             "β of the backflow stabilization (see pressure): for a face blood enters by "
+                             "(Q < 0), ≥ 0.5")}}},
        {"valve",
         {{"set", set_key("named boundary face set of the fluid: the valve's ring")},
          {"cavity", string(nullopt, "the circulation's cavity whose valve this ring is")},
          {"side", choice(nullopt, {"inflow", "outflow"},
                          "inflow: the cavity's inflow valve (mitral), blood enters; outflow: its outflow "
-                         "valve (aortic), blood leaves")}}}});
+                         "valve (aortic), blood leaves")},
+         {"backflow", number(0.5, Range::non_negative(),
+                             "β of the backflow stabilization (see pressure): blood enters through an "
+                             "inflow ring, and its kinetic energy ½ρ|c·n||v|² would come in unbounded "
+                             "through the ring's natural boundary term; β ≥ 0.5 takes it out (0: off)")}}}});
 }
 
 Schema mesh_motion() {

@@ -81,6 +81,7 @@ CavityPressureTerm::CavityPressureTerm(const RunSpec& spec, const MacroPartition
 void CavityPressureTerm::declare(MacroSystem& system) {
   u_ = &system.field("displacement");
   pc_ = &system.field("cavity_pressure");
+  rings_ = system.fields().find("fluid_flux_pressure");
   for (size_t i = 0; i < cavities_.size(); ++i) cavity_dofs_.push_back(pc_->global_dof(static_cast<int>(i)));
   for (size_t i = 0; i < cavities_.size(); ++i) {
     Cavity& cav = cavities_[i];
@@ -119,9 +120,11 @@ void CavityPressureTerm::assemble(const MacroState& state, MacroAssembly& out) {
   inflating_ = inflating;
   // Every coordinator advances the (small) circulation, so that its flows and valve
   // states are known wherever a term reads them (valve rings); the rows are the owner's.
+  Circulation::ValvePorts ports;
+  if (ports_ && rings_)  // asked at every assembly (the rings' states follow it)
+    ports = ports_(std::span<const double>(state.x.data() + rings_->offset(), static_cast<size_t>(rings_->size())));
   flows_ = inflating ? circulation_.at_rest(0.0, p, committed_)
-                     : circulation_.step(state.time, state.dt, p, committed_, current_,
-                                         held_ ? held_() : Circulation::HeldShut{});
+                     : circulation_.step(state.time, state.dt, p, committed_, current_, ports);
   assemble_blood_rows(state, out);
   Eigen::VectorXd f1;
   Eigen::MatrixXd dfdx1;
@@ -212,11 +215,15 @@ void CavityPressureTerm::commit(const MacroState& state) {
   } else {
     committed_ = current_;
   }
+  committed_flows_ = flows_;
   const Eigen::VectorXd u = u_->at_every_node(state.x, spec_.mesh.num_nodes());
   for (size_t i = 0; i < cavities_.size(); ++i) V_n_[i] = cavity_volume(spec_.mesh, cavities_[i].surface, u).volume;
 }
 
-void CavityPressureTerm::rollback() { current_ = committed_; }
+void CavityPressureTerm::rollback() {
+  current_ = committed_;
+  flows_ = committed_flows_;  // what the rings' states are decided from at the retry's start
+}
 
 void CavityPressureTerm::save(ByteWriter& w) const {
   w.put_array(committed_.data(), committed_.size());

@@ -30,11 +30,13 @@
 // the wall, and its rings pass the circulation's flows (the volume balance). Its p_c is
 // the blood's mean pressure over the cavity's fluid elements Ω_b,c (reference volumes),
 //   R_c = ∫_Ωb,c (p_c − p) dV,
-// the pressure the circulation sees; its valves' flows at p_c drive the rings, with
-// ∂Q/∂p_c in the rings'
-// rows (CavityFlows::dQin_dp, dQout_dp); the valves its rings hold shut for the step are
-// shut in the circulation too (hold_valves). While inflating p_c is prescribed as above
-// and the inflow ring holds it.
+// the pressure the circulation reports and opens a shut valve by. The rings meet the
+// circulation's valves (couple_rings, Circulation::ValvePorts): a valve whose ring is shut
+// is shut in the circulation too, and an open valve passes the flow its ring's own
+// pressure λ drives, Q(λ) (an impedance condition: the blood's inertia and the valve
+// share the pressure drop, rather than the valve's flow at p_c being forced through the
+// ring whatever λ it takes), with ∂Q/∂λ and ∂Q/∂p_c in the rings' rows. While
+// inflating p_c is prescribed as above and the inflow ring holds it.
 //
 // The pressure load on a face is assembled by the coordinator owning the face's tet; the
 // volume rows R_c need the whole surface (and the circulation), so the coordinator owning
@@ -74,10 +76,11 @@ class CavityPressureTerm final : public MacroTerm {
   bool filled_with_blood(int i) const { return cavities_.at(static_cast<size_t>(i)).blood; }
   /// The last assembly was of the end-diastolic inflation.
   bool inflating() const { return inflating_; }
-  /// The valves the blood's rings hold shut for the rest of the step (asked at every
-  /// assembly of a beat step): the circulation shuts them too, so that what leaves a
-  /// cavity filled with blood is what its rings pass.
-  void hold_valves(std::function<Circulation::HeldShut()> held) { held_ = std::move(held); }
+  /// How the blood's valve rings meet the circulation, from their pressures (the field
+  /// fluid_flux_pressure's values), asked once at every assembly before the circulation
+  /// is evaluated (ignored while inflating).
+  using RingPorts = std::function<Circulation::ValvePorts(std::span<const double> ring_pressures)>;
+  void couple_rings(RingPorts ports) { ports_ = std::move(ports); }
 
  private:
   struct Face {
@@ -113,9 +116,10 @@ class CavityPressureTerm final : public MacroTerm {
   std::vector<double> committed_, current_;  ///< circulation state
   std::vector<double> V_n_, V_ref_;
   std::vector<double> p_fill_;  ///< per cavity: the filling pressure of end-diastole
-  CavityFlows flows_;
+  CavityFlows flows_, committed_flows_;
   bool inflating_ = false;
-  std::function<Circulation::HeldShut()> held_;
+  RingPorts ports_;
+  const Field* rings_ = nullptr;  ///< fluid_flux_pressure, if any
 };
 
 }  // namespace fe2

@@ -133,9 +133,13 @@ void FluxConstraintTerm::declare(MacroSystem& system) {
       const int dof = lambda_->global_dof(static_cast<int>(b));
       local_shut_.push_back(boundaries_[b].active ? system.declare_local({dof}) : -1);
       std::vector<int> columns{dof};
-      if (boundaries_[b].coupling && cavity_pressure_)
+      if (boundaries_[b].coupling && cavity_pressure_) {
         for (int c = 0; c < cavity_pressure_->size(); ++c) columns.push_back(cavity_pressure_->global_dof(c));
+        for (size_t other = 0; other < boundaries_.size(); ++other)
+          if (other != b && boundaries_[other].coupling) columns.push_back(lambda_->global_dof(static_cast<int>(other)));
+      }
       local_coupled_.push_back(columns.size() > 1 ? system.declare_local({dof}, columns) : -1);
+      coupled_columns_.push_back(std::move(columns));
     }
   // The reference areas of the whole rings, whichever coordinator owns their faces (the
   // scale of a ring's row while it holds a pressure).
@@ -178,6 +182,14 @@ void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
       const double lambda = state.x[dofs_[k].back()];
       R.head(nv) = lambda * s;
       K.col(nv).head(nv) = s;
+      if (const Boundary& b = boundaries_[static_cast<size_t>(faces_[k].boundary)]; b.backflow > 0.0) {
+        Eigen::VectorXd Rb;
+        Eigen::MatrixXd Kb;
+        backflow_face(mesh_.order(), b.density, b.backflow, x, Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, nv / 3), w,
+                      Rb, &Kb);
+        R.head(nv) += Rb;
+        K.topLeftCorner(nv, nv) += Kb;
+      }
       if (coupling[static_cast<size_t>(faces_[k].boundary)].holds_pressure_of < 0) {  // a flux row
         R[nv] = (v - Eigen::Map<const Eigen::VectorXd>(w.data(), w.size())).dot(s);
         K.row(nv).head(nv) = s.transpose();
@@ -189,18 +201,27 @@ void FluxConstraintTerm::assemble(const MacroState& state, MacroAssembly& out) {
   if (!owns_globals_) return;
   for (size_t b = 0; b < boundaries_.size(); ++b) {
     const int dof = lambda_->global_dof(static_cast<int>(b));
-    if (active[b] && local_coupled_[b] >= 0) {  // Q(p_c), or λ = p_c
-      const RingCoupling& rc = coupling[b];
-      const int n = cavity_pressure_->size();
-      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(1, n + 1);
+    const RingCoupling& rc = coupling[b];
+    if (local_coupled_[b] >= 0 && (active[b] || rc.holds_pressure_of >= 0)) {  // Q(p_c, λ), or λ = p_c
+      const std::vector<int>& columns = coupled_columns_[b];
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(1, static_cast<Eigen::Index>(columns.size()));
+      // The derivative ∂R_λ/∂x_j into the column of DOF j (λ_b's own is column 0).
+      const auto add = [&](int global, double value) {
+        const auto it = std::find(columns.begin(), columns.end(), global);
+        FE2_CHECK(it != columns.end(), "flux ring '{}': DOF {} is not among its coupled columns", boundaries_[b].set, global);
+        K(0, it - columns.begin()) += value;
+      };
       if (rc.holds_pressure_of >= 0) {
-        const double p = state.x[cavity_pressure_->global_dof(rc.holds_pressure_of)];
-        out.add_internal({dof}, Eigen::VectorXd::Constant(1, area_[b] * (state.x[dof] - p)));
-        K(0, 0) = area_[b];
-        K(0, 1 + rc.holds_pressure_of) = -area_[b];
+        const int pc = cavity_pressure_->global_dof(rc.holds_pressure_of);
+        out.add_internal({dof}, Eigen::VectorXd::Constant(1, area_[b] * (state.x[dof] - state.x[pc])));
+        add(dof, area_[b]);
+        add(pc, -area_[b]);
       } else {
         out.add_external({dof}, Eigen::VectorXd::Constant(1, boundaries_[b].flux(state.time)));
-        for (int c = 0; c < n && c < static_cast<int>(rc.dQ_dp.size()); ++c) K(0, 1 + c) = -rc.dQ_dp[static_cast<size_t>(c)];
+        for (int c = 0; c < cavity_pressure_->size() && c < static_cast<int>(rc.dQ_dp.size()); ++c)
+          add(cavity_pressure_->global_dof(c), -rc.dQ_dp[static_cast<size_t>(c)]);
+        for (size_t other = 0; other < rc.dQ_dring.size(); ++other)
+          if (rc.dQ_dring[other] != 0.0) add(lambda_->global_dof(static_cast<int>(other)), -rc.dQ_dring[other]);
       }
       out.add_tangent(local_coupled_[b], K);
     } else if (active[b]) {
@@ -225,7 +246,7 @@ void FluxConstraintTerm::observe(const MacroState& state, std::vector<Observable
 // --- moving walls
 
 MovingWallTerm::MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes, std::string multiplier,
-                               std::shared_ptr<ValveStates> valves, std::vector<int> ring_of_node)
+                               std::shared_ptr<ValveStates> valves, std::vector<std::vector<int>> ring_of_node)
     : owns_globals_(partition.owns_globals()), nodes_(std::move(nodes)), multiplier_(std::move(multiplier)),
       valves_(std::move(valves)), ring_of_node_(std::move(ring_of_node)) {}
 
@@ -233,6 +254,19 @@ std::unique_ptr<MovingWallTerm> MovingWallTerm::loading_wall(const MacroPartitio
   auto term = std::make_unique<MovingWallTerm>(partition, std::move(nodes));
   term->loads_wall_ = true;
   return term;
+}
+
+void MovingWallTerm::save(ByteWriter& w) const {
+  if (!valves_) return;
+  const std::vector<bool>& open = valves_->states();
+  const std::vector<uint8_t> bytes(open.begin(), open.end());
+  w.put_array(bytes.data(), bytes.size());
+}
+
+void MovingWallTerm::restore(ByteReader& r) {
+  if (!valves_) return;
+  const std::vector<uint8_t> bytes = r.get_array<uint8_t>();
+  valves_->set_states({bytes.begin(), bytes.end()});
 }
 
 void MovingWallTerm::declare(MacroSystem& system) {
@@ -263,12 +297,14 @@ void MovingWallTerm::add_residual_scale(const Field& field, Eigen::VectorXd& sca
 
 void MovingWallTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const double c0 = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d
-  if (valves_) valves_->update();  // before the rings' flux rows read them (fluid_terms' order)
+  // Before the rings' flux rows read them (fluid_terms' order).
+  if (valves_ && !valves_->updated_before_circulation()) valves_->update();
   for (size_t k = 0; k < rows_.size(); ++k) {
     const std::vector<int>& dofs = rows_[k].dofs;
     const std::vector<int>& wall = rows_[k].wall;
     const bool moving = dofs.size() == 9;
-    const bool sticks = !valves_ || !valves_->open(ring_of_node_[k]);
+    const bool sticks = !valves_ || std::any_of(ring_of_node_[k].begin(), ring_of_node_[k].end(),
+                                                [&](int ring) { return !valves_->open(ring); });
     Eigen::VectorXd R(6);
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(6 + wall.size()),
                                               static_cast<Eigen::Index>(dofs.size()));

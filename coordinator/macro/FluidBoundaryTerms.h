@@ -80,18 +80,24 @@ class OpenBoundaryTerm final : public MacroTerm {
 
 class FluxConstraintTerm final : public MacroTerm {
  public:
-  /// A two-way valve ring's dependence on the circulation's cavity pressures p_c.
+  /// A two-way valve ring's dependence on the circulation: its flow Q is the valve's,
+  /// driven by the ring's own pressure λ (Circulation::ValvePorts), so its row
+  /// R_λ = ∫(v − v̂)·n da − Q has columns −∂Q/∂p_c and −∂Q/∂λ_b' (every coupled ring b').
   struct RingCoupling {
-    std::vector<double> dQ_dp;  ///< ∂Q/∂p_c per cavity (the row's −∂Q/∂p_c columns)
-    int holds_pressure_of = -1; ///< ≥ 0: the ring is a pressure face at that cavity's p_c
-                                ///< instead (the inflow ring while the wall is inflated):
-                                ///< R_λ = A (λ − p_c), A its area
+    std::vector<double> dQ_dp;     ///< ∂Q/∂p_c per cavity
+    std::vector<double> dQ_dring;  ///< ∂Q/∂λ_b' per boundary b' of this term (0: uncoupled)
+    int holds_pressure_of = -1;    ///< ≥ 0: λ is that cavity's p_c instead, R_λ = A (λ − p_c),
+                                   ///< A the ring's area: the inflow ring while the wall is
+                                   ///< inflated (a pressure face), and a shut ring (its λ
+                                   ///< then starts from p_c when it opens)
   };
   struct Boundary {
     std::string set;
     std::function<double(double)> flux;
     std::function<bool()> active;  ///< empty: always; else a valve ring's (shut: λ = 0)
     std::function<RingCoupling()> coupling;  ///< empty: Q depends on time alone
+    double backflow = 0.0;                   ///< β of the backflow term while active (0: off)
+    double density = 0.0;                    ///< ρ of the backflow term
   };
   FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
                      std::vector<Boundary> boundaries);
@@ -113,7 +119,9 @@ class FluxConstraintTerm final : public MacroTerm {
   std::vector<int> local_;
   std::vector<int> local_shut_;  ///< per boundary: the λλ entry of a shut valve's row (−1: never shut)
   const Field* cavity_pressure_ = nullptr;  ///< the circulation's p_c (coupled rings)
-  std::vector<int> local_coupled_;  ///< per boundary: row λ_b, columns λ_b and every p_c (−1: uncoupled)
+  std::vector<int> local_coupled_;  ///< per boundary: row λ_b, columns coupled_columns_[b] (−1: uncoupled)
+  /// per boundary: λ_b, every p_c, then every other coupled ring's λ (global DOFs)
+  std::vector<std::vector<int>> coupled_columns_;
   std::vector<double> area_;        ///< per boundary: its reference area
 };
 
@@ -122,24 +130,44 @@ class FluxConstraintTerm final : public MacroTerm {
 /// first `free_iterations`, then held to the step's end.
 class ValveStates {
  public:
-  /// `decide`: every ring's state from the current iterate.
-  explicit ValveStates(std::function<std::vector<bool>()> decide, int free_iterations = 5)
+  /// `decide`: every ring's state from the current iterate and the states it had (empty
+  /// before the first decision).
+  using Decide = std::function<std::vector<bool>(const std::vector<bool>& previous)>;
+  explicit ValveStates(Decide decide, int free_iterations = 5)
       : decide_(std::move(decide)), free_iterations_(free_iterations) {}
   void update() {
-    if (iteration_++ < free_iterations_ || open_.empty()) open_ = decide_();
+    if (iteration_++ < free_iterations_ || open_.empty()) open_ = decide_(open_);
   }
+  /// Whether the states have been decided once (before that, open() decides them).
+  bool decided() const { return !open_.empty(); }
+  /// Two-way rings: the states are updated where the circulation is evaluated, before it
+  /// (so that its valves and the rings agree within every iteration), not by the closure.
+  void update_before_circulation() { before_circulation_ = true; }
+  bool updated_before_circulation() const { return before_circulation_; }
+  /// Held for whole steps (free_iterations 0): whether the converged step agrees with
+  /// the states it was solved with; if not, the states are changed to what it says (the
+  /// step is then solved again). With free iterations: always.
+  bool accept() {
+    if (free_iterations_ > 0 || open_.empty()) return true;
+    std::vector<bool> next = decide_(open_);
+    if (next == open_) return true;
+    open_ = std::move(next);
+    return false;
+  }
+  /// The states, for checkpoints.
+  const std::vector<bool>& states() const { return open_; }
+  void set_states(std::vector<bool> open) { open_ = std::move(open); }
   bool open(int ring) {
-    if (open_.empty()) open_ = decide_();  // a ring without closure nodes of its own
+    if (open_.empty()) open_ = decide_(open_);  // a ring without closure nodes of its own
     return open_.at(static_cast<size_t>(ring));
   }
   /// The next assembly starts a step (after a commit or a rollback).
   void release() { iteration_ = 0; }
-  /// The states are held: this step's free iterations are over.
-  bool holding() const { return iteration_ >= free_iterations_ && !open_.empty(); }
 
  private:
-  std::function<std::vector<bool>()> decide_;
+  Decide decide_;
   int free_iterations_;
+  bool before_circulation_ = false;
   std::vector<bool> open_;
   int iteration_ = 0;
 };
@@ -148,9 +176,10 @@ class MovingWallTerm final : public MacroTerm {
  public:
   /// `nodes`: fluid_scene.h's moving_wall_nodes (or a valve's ring nodes), in the
   /// multiplier field's order; the first coordinator assembles them all (a handful of
-  /// rows each). With `valves`, node k sticks only while ring ring_of_node[k]'s valve is shut.
+  /// rows each). With `valves`, node k sticks only while one of the rings ring_of_node[k]
+  /// is shut.
   MovingWallTerm(const MacroPartition& partition, std::vector<int> nodes, std::string multiplier = "fluid_wall_multiplier",
-                 std::shared_ptr<ValveStates> valves = nullptr, std::vector<int> ring_of_node = {});
+                 std::shared_ptr<ValveStates> valves = nullptr, std::vector<std::vector<int>> ring_of_node = {});
   /// Two-way: the multipliers also act on the wall's displacement (see above).
   static std::unique_ptr<MovingWallTerm> loading_wall(const MacroPartition& partition, std::vector<int> nodes);
   std::string name() const override { return valves_ ? "fluid valve closure" : "fluid moving wall"; }
@@ -158,15 +187,20 @@ class MovingWallTerm final : public MacroTerm {
   /// 1 per multiplier (the measure is |v − v̂| in velocity units).
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// Valve rings held for whole steps: whether the converged step agrees with their states.
+  bool accept(const MacroState&) override { return !valves_ || valves_->accept(); }
   void commit(const MacroState&) override { if (valves_) valves_->release(); }
   void rollback() override { if (valves_) valves_->release(); }
+  /// The valve rings' states.
+  void save(ByteWriter& w) const override;
+  void restore(ByteReader& r) override;
 
  private:
   bool owns_globals_;
   std::vector<int> nodes_;
   std::string multiplier_;
   std::shared_ptr<ValveStates> valves_;
-  std::vector<int> ring_of_node_;
+  std::vector<std::vector<int>> ring_of_node_;
   bool loads_wall_ = false;
   const Field *lambda_ = nullptr, *v_ = nullptr, *d_ = nullptr, *u_ = nullptr;
   struct Node {

@@ -39,7 +39,7 @@ struct FluidBoundary {
   std::optional<Valve> valve;
   /// traction: t(t), the force per current area the outside exerts on the blood.
   std::function<Vec3(double t)> traction;
-  double backflow = 0.0;  ///< pressure and traction faces: β of the backflow term (0: off)
+  double backflow = 0.0;  ///< pressure, traction, flux and valve faces: β of the backflow term (0: off)
 
   using VelocityValue = std::function<Vec3(const Vec3& X, double t)>;
   using ScalarValue = std::function<double(double t)>;
@@ -76,18 +76,20 @@ struct FluidBoundary {
     b.set = std::move(set);
     return b;
   }
-  static FluidBoundary flux(std::string set, ScalarValue Q) {
+  static FluidBoundary flux(std::string set, ScalarValue Q, double backflow = 0.0) {
     FluidBoundary b;
     b.kind = Kind::flux;
     b.set = std::move(set);
     b.value = std::move(Q);
+    b.backflow = backflow;
     return b;
   }
-  static FluidBoundary valve_flux(std::string set, Valve valve) {
+  static FluidBoundary valve_flux(std::string set, Valve valve, double backflow = 0.0) {
     FluidBoundary b;
     b.kind = Kind::flux;
     b.set = std::move(set);
     b.valve = valve;
+    b.backflow = backflow;
     return b;
   }
 };

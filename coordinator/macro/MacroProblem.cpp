@@ -148,6 +148,13 @@ void MacroProblem::retract(double alpha, bool first, const Eigen::VectorXd& du_D
   system_.constraints().distribute(x_);
 }
 
+bool MacroProblem::accept(double t_new, double dt) {
+  const MacroState s = state(t_new, dt);
+  bool all = true;
+  for (auto& term : terms_) all = term->accept(s) && all;
+  return all;
+}
+
 void MacroProblem::commit(double t_new, double dt) {
   const MacroState s = state(t_new, dt);
   for (auto& term : terms_) term->commit(s);

@@ -65,6 +65,8 @@ class MacroProblem {
   /// the x_k and Δx of the last update().
   void retract(double alpha, bool first, const Eigen::VectorXd& du_D);
 
+  /// Whether every term accepts the converged step (MacroTerm::accept; each is asked).
+  bool accept(double t_new, double dt);
   void commit(double t_new, double dt);
   /// Every term's observables at the committed state, reduced over the coordinators.
   /// @note Collective.

@@ -92,6 +92,10 @@ class MacroTerm {
   /// Appends its observables at the committed state; the same names, in the same order,
   /// on every coordinator.
   virtual void observe(const MacroState& /*state*/, std::vector<Observable>& /*out*/) const {}
+  /// The step converged at `state`: false if that contradicts a discrete choice the term
+  /// held for the step (a valve ring's state). The term has then made the other choice,
+  /// and the step is solved again from its start (Simulation::advance; a few times at most).
+  virtual bool accept(const MacroState& /*state*/) { return true; }
   /// The step converged / is being cut back (terms with their own history).
   virtual void commit(const MacroState&) {}
   virtual void rollback() {}

@@ -6,6 +6,8 @@
 #include "coordinator/macro/NavierStokesTerm.h"
 
 #include <algorithm>
+#include <map>
+#include <limits>
 
 namespace fe2 {
 
@@ -23,6 +25,26 @@ std::vector<int> FluidSetup::flux_boundaries() const {
 }
 
 namespace {
+
+/// Per mesh node: whether a fluid element has it.
+std::vector<char> fluid_nodes(const TetMesh& mesh, const FluidSetup& setup) {
+  std::vector<char> fluid(static_cast<size_t>(mesh.num_nodes()), 0);
+  for (int e = 0; e < mesh.num_tets(); ++e)
+    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
+      for (int a : mesh.element_nodes(e)) fluid[static_cast<size_t>(a)] = 1;
+  return fluid;
+}
+
+/// Per mesh node: whether a boundary of `kind` holds it (`every_component`: in all three
+/// components).
+std::vector<char> nodes_of(const TetMesh& mesh, const FluidSetup& setup, FluidBoundary::Kind kind,
+                           bool every_component = false) {
+  std::vector<char> on(static_cast<size_t>(mesh.num_nodes()), 0);
+  for (const FluidBoundary& b : setup.boundaries)
+    if (b.kind == kind && (!every_component || (b.components[0] && b.components[1] && b.components[2])))
+      for (int a : mesh.node_sets.at(b.set)) on[static_cast<size_t>(a)] = 1;
+  return on;
+}
 
 void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
   const int order = fluid_velocity_order(setup.element);
@@ -44,46 +66,49 @@ void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
     if (on_faces ? !mesh.faces.count(b.set) : !mesh.node_sets.count(b.set))
       throw InputError(fmt::format("fluid boundary: the mesh has no {} '{}'", on_faces ? "face set" : "node set", b.set));
   }
+  // A flux face whose every node another condition holds passes nothing, whatever its
+  // pressure (a ring of one coarse triangle inside a no-slip cap).
+  const std::vector<char> velocity = nodes_of(mesh, setup, FluidBoundary::Kind::velocity, true);
+  const std::vector<char> wall = nodes_of(mesh, setup, FluidBoundary::Kind::moving_wall);
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (b.kind != FluidBoundary::Kind::flux) continue;
+    bool free = false;
+    for (const auto& tri : mesh.faces.at(b.set))
+      for (int a : mesh.face_nodes(tri)) free = free || !(velocity[static_cast<size_t>(a)] || wall[static_cast<size_t>(a)]);
+    if (!free)
+      throw InputError(fmt::format("fluid boundary '{}' ({}): every node of its faces is held by a velocity, no_slip "
+                                   "or moving_wall set, so no blood can pass it; expected nodes of its own (a finer "
+                                   "mesh there, or a wider ring)",
+                                   b.set, b.valve ? "a valve ring" : "a flux face"));
+  }
 }
 
 }  // namespace
 
 std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup) {
-  std::vector<char> fluid(static_cast<size_t>(mesh.num_nodes()), 0), taken(fluid.size(), 0), wall(fluid.size(), 0);
-  for (int e = 0; e < mesh.num_tets(); ++e)
-    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
-      for (int a : mesh.element_nodes(e)) fluid[static_cast<size_t>(a)] = 1;
-  for (const FluidBoundary& b : setup.boundaries) {
-    if (b.kind != FluidBoundary::Kind::velocity && b.kind != FluidBoundary::Kind::moving_wall) continue;
-    auto& mark = b.kind == FluidBoundary::Kind::velocity ? taken : wall;
-    for (int a : mesh.node_sets.at(b.set)) mark[static_cast<size_t>(a)] = 1;
-  }
+  const std::vector<char> fluid = fluid_nodes(mesh, setup);
+  const std::vector<char> taken = nodes_of(mesh, setup, FluidBoundary::Kind::velocity);
+  const std::vector<char> wall = nodes_of(mesh, setup, FluidBoundary::Kind::moving_wall);
   std::vector<int> nodes;
-  for (int a = 0; a < mesh.num_nodes(); ++a)
-    if (wall[static_cast<size_t>(a)] && fluid[static_cast<size_t>(a)] && !taken[static_cast<size_t>(a)]) nodes.push_back(a);
+  for (size_t a = 0; a < fluid.size(); ++a)
+    if (wall[a] && fluid[a] && !taken[a]) nodes.push_back(static_cast<int>(a));
   return nodes;
 }
 
-std::vector<std::pair<int, int>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup) {
-  std::vector<char> fluid(static_cast<size_t>(mesh.num_nodes()), 0), taken(fluid.size(), 0);
-  for (int e = 0; e < mesh.num_tets(); ++e)
-    if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
-      for (int a : mesh.element_nodes(e)) fluid[static_cast<size_t>(a)] = 1;
-  for (const FluidBoundary& b : setup.boundaries)
-    if (b.kind == FluidBoundary::Kind::velocity || b.kind == FluidBoundary::Kind::moving_wall)
-      for (int a : mesh.node_sets.at(b.set)) taken[static_cast<size_t>(a)] = 1;
-  std::vector<std::pair<int, int>> nodes;
+std::vector<std::pair<int, std::vector<int>>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup) {
+  const std::vector<char> fluid = fluid_nodes(mesh, setup);
+  const std::vector<char> velocity = nodes_of(mesh, setup, FluidBoundary::Kind::velocity);
+  const std::vector<char> wall = nodes_of(mesh, setup, FluidBoundary::Kind::moving_wall);
+  std::map<int, std::vector<int>> rings_of_node;
   int ring = 0;
   for (const FluidBoundary& b : setup.boundaries) {
     if (!b.valve) continue;
     for (int a : mesh.node_sets.at(b.set))
-      if (fluid[static_cast<size_t>(a)] && !taken[static_cast<size_t>(a)]) {
-        nodes.emplace_back(a, ring);
-        taken[static_cast<size_t>(a)] = 1;  // a node on two rings sticks with the first
-      }
+      if (fluid[static_cast<size_t>(a)] && !velocity[static_cast<size_t>(a)] && !wall[static_cast<size_t>(a)])
+        rings_of_node[a].push_back(ring);
     ++ring;
   }
-  return nodes;
+  return {rings_of_node.begin(), rings_of_node.end()};
 }
 
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
@@ -158,7 +183,13 @@ std::function<double(double)> flux_of(const FluidBoundary& b, const CavityPressu
   };
 }
 
-/// The valve rings' states from the circulation's valves (open: Δp > 0 across it).
+/// The valve rings' states from the circulation's valves: a shut ring opens when the
+/// pressure drop across its valve with the cavity at p_c is positive; an open ring stays
+/// open while its valve passes blood forward (Δp > 0 at the pressure the valve sees: two-way,
+/// the ring's own); while the wall is inflated the inflow ring is open. One-way, the states
+/// follow the iterate during a step's first iterations; two-way they are held for whole
+/// steps and checked at convergence (ValveStates::accept): with the ring's pressure an
+/// unknown, a state decided from an unconverged iterate chatters.
 std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityPressureTerm* cavities) {
   std::vector<FluidBoundary::Valve> valves;
   for (const FluidBoundary& b : setup.boundaries) {
@@ -168,33 +199,70 @@ std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityP
     valves.push_back(*b.valve);
   }
   if (valves.empty()) return nullptr;
-  return std::make_shared<ValveStates>([cavities, valves] {
+  return std::make_shared<ValveStates>([cavities, valves](const std::vector<bool>& previous) {
     const CavityFlows& f = cavities->flows();
     std::vector<bool> open;
-    for (const FluidBoundary::Valve& v : valves) {
+    for (size_t k = 0; k < valves.size(); ++k) {
+      const FluidBoundary::Valve& v = valves[k];
       const size_t c = static_cast<size_t>(v.cavity);
-      open.push_back(v.cavity < f.n && (v.outflow ? f.outflow_open[c] : f.inflow_open[c]));
+      if (v.cavity >= f.n) {
+        open.push_back(false);
+        continue;
+      }
+      const bool passes = v.outflow ? f.outflow_open[c] : f.inflow_open[c];
+      const bool opens = (v.outflow ? f.outflow_drop[c] : f.inflow_drop[c]) > 0.0;
+      open.push_back(previous.empty() || previous[k] || f.phase[c] == "inflation" ? passes : opens);
     }
     return open;
-  });
+  }, setup.two_way ? 0 : 5);
 }
 
-/// A two-way ring's Q(p_c) derivatives, or (inflow ring, wall inflating) the cavity
-/// pressure it holds.
-std::function<FluxConstraintTerm::RingCoupling()> ring_coupling(const FluidBoundary::Valve& valve,
-                                                                 const CavityPressureTerm& cavities) {
-  return [valve, &cavities] {
+/// A two-way ring's coupling to the circulation (FluxConstraintTerm::RingCoupling): open,
+/// the derivatives of its valve's flow; shut, or the inflow ring while the wall is
+/// inflated, it holds the cavity's pressure. `port_of_flux`: per flux boundary, the
+/// column of its ring pressure among CavityFlows::dQin_dport's, or −1.
+std::function<FluxConstraintTerm::RingCoupling()> ring_coupling(const FluidBoundary::Valve& valve, int ring,
+                                                                 const CavityPressureTerm& cavities,
+                                                                 std::shared_ptr<ValveStates> valves,
+                                                                 std::vector<int> port_of_flux) {
+  return [valve, ring, &cavities, valves, port_of_flux] {
     FluxConstraintTerm::RingCoupling rc;
-    const size_t n = static_cast<size_t>(cavities.count());
-    if (cavities.inflating()) {
-      if (!valve.outflow) rc.holds_pressure_of = valve.cavity;
+    if ((cavities.inflating() && !valve.outflow) || !valves->open(ring)) {
+      rc.holds_pressure_of = valve.cavity;
       return rc;
     }
-    const std::vector<double>& dQ = valve.outflow ? cavities.flows().dQout_dp : cavities.flows().dQin_dp;
+    const size_t n = static_cast<size_t>(cavities.count()), c = static_cast<size_t>(valve.cavity);
+    const CavityFlows& f = cavities.flows();
+    const std::vector<double>& dQ = valve.outflow ? f.dQout_dp : f.dQin_dp;
+    const std::vector<double>& dQ_dport = valve.outflow ? f.dQout_dport : f.dQin_dport;
     // Q of an inflow ring is −Q_in (out of the fluid).
     const double sign = valve.outflow ? 1.0 : -1.0;
-    for (size_t j = 0; j < n; ++j) rc.dQ_dp.push_back(sign * dQ[static_cast<size_t>(valve.cavity) * n + j]);
+    for (size_t j = 0; j < n; ++j) rc.dQ_dp.push_back(sign * dQ[c * n + j]);
+    for (const int column : port_of_flux)
+      rc.dQ_dring.push_back(column < 0 ? 0.0 : sign * dQ_dport[c * 2 * n + static_cast<size_t>(column)]);
     return rc;
+  };
+}
+
+/// The rings' ports for the circulation (Circulation::ValvePorts) from their pressures:
+/// a shut ring's valve is held shut, an open one sees its ring's pressure. The rings'
+/// states are updated here, once per assembly, before the circulation is evaluated.
+CavityPressureTerm::RingPorts ring_ports(std::shared_ptr<ValveStates> valves, std::vector<FluidBoundary::Valve> rings,
+                                         std::vector<int> flux_of_ring, int cavities) {
+  valves->update_before_circulation();
+  return [valves, rings, flux_of_ring, n = static_cast<size_t>(cavities)](std::span<const double> lambda) {
+    valves->update();  // from the last evaluation's flows: the previous iterate
+    Circulation::ValvePorts ports;
+    ports.inflow_shut.assign(n, false);
+    ports.outflow_shut.assign(n, false);
+    ports.inflow_pressure.assign(n, std::numeric_limits<double>::quiet_NaN());
+    ports.outflow_pressure.assign(n, std::numeric_limits<double>::quiet_NaN());
+    for (size_t k = 0; k < rings.size(); ++k) {
+      const size_t c = static_cast<size_t>(rings[k].cavity);
+      if (!valves->open(static_cast<int>(k))) (rings[k].outflow ? ports.outflow_shut : ports.inflow_shut)[c] = true;
+      else (rings[k].outflow ? ports.outflow_pressure : ports.inflow_pressure)[c] = lambda[static_cast<size_t>(flux_of_ring[k])];
+    }
+    return ports;
   };
 }
 
@@ -213,36 +281,42 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
   std::vector<OpenBoundaryTerm::Boundary> open;
   std::vector<FluxConstraintTerm::Boundary> flux;
   const std::shared_ptr<ValveStates> valves = valve_states(setup, cavities);
+  const bool two_way_rings = valves && setup.two_way && cavities;
+  // Per flux boundary, its ring pressure's column among the circulation's ports; per
+  // ring, its flux boundary.
+  std::vector<int> port_of_flux, flux_of_ring;
+  std::vector<FluidBoundary::Valve> rings;
+  for (const FluidBoundary& b : setup.boundaries) {
+    if (b.kind != FluidBoundary::Kind::flux) continue;
+    if (b.valve) {
+      flux_of_ring.push_back(static_cast<int>(port_of_flux.size()));
+      rings.push_back(*b.valve);
+    }
+    port_of_flux.push_back(!b.valve || !cavities ? -1
+                           : b.valve->outflow    ? cavities->count() + b.valve->cavity
+                                                 : b.valve->cavity);
+  }
   int ring = 0;
   for (const FluidBoundary& b : setup.boundaries) {
     if (b.kind == FluidBoundary::Kind::pressure) open.push_back({b.set, b.value, b.backflow, {}});
     if (b.kind == FluidBoundary::Kind::traction) open.push_back({b.set, {}, b.backflow, b.traction});
     if (b.kind != FluidBoundary::Kind::flux) continue;
     std::function<bool()> active;
-    if (b.valve) active = [valves, k = ring++] { return valves->open(k); };
     std::function<FluxConstraintTerm::RingCoupling()> coupling;
-    if (b.valve && setup.two_way && cavities) coupling = ring_coupling(*b.valve, *cavities);
-    flux.push_back({b.set, flux_of(b, cavities), active, coupling});
+    if (b.valve) {
+      active = [valves, k = ring] { return valves->open(k); };
+      if (two_way_rings) coupling = ring_coupling(*b.valve, ring, *cavities, valves, port_of_flux);
+      ++ring;
+    }
+    flux.push_back({b.set, flux_of(b, cavities), active, coupling, b.backflow, setup.fluid.density});
   }
-  // Two-way, the circulation shuts what the rings hold shut (what leaves the cavity is
-  // what they pass).
-  if (valves && setup.two_way && cavities) {
-    std::vector<FluidBoundary::Valve> rings;
-    for (const FluidBoundary& b : setup.boundaries)
-      if (b.valve) rings.push_back(*b.valve);
-    cavities->hold_valves([valves, rings, n = static_cast<size_t>(cavities->count())] {
-      Circulation::HeldShut held;
-      if (!valves->holding()) return held;
-      held.inflow.assign(n, false);
-      held.outflow.assign(n, false);
-      for (size_t k = 0; k < rings.size(); ++k)
-        if (!valves->open(static_cast<int>(k))) (rings[k].outflow ? held.outflow : held.inflow)[static_cast<size_t>(rings[k].cavity)] = true;
-      return held;
-    });
-  }
+  // Two-way, the circulation's valves meet the rings: shut where they are shut, driven by
+  // the ring's pressure where they are open.
+  if (two_way_rings) cavities->couple_rings(ring_ports(valves, rings, flux_of_ring, cavities->count()));
   // The valve closure updates the valves' states: before the rings' flux rows.
   if (const auto rings = valve_ring_nodes(mesh, setup); !rings.empty()) {
-    std::vector<int> nodes, ring_of_node;
+    std::vector<int> nodes;
+    std::vector<std::vector<int>> ring_of_node;
     for (const auto& [a, k] : rings) nodes.push_back(a), ring_of_node.push_back(k);
     terms.push_back(std::make_unique<MovingWallTerm>(partition, std::move(nodes), "fluid_valve_multiplier", valves,
                                                      std::move(ring_of_node)));

@@ -53,8 +53,9 @@ MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup);
 std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup);
 
 /// The fluid's nodes of its valve rings that no velocity or moving-wall condition
-/// holds, with the ring's index among the valve boundaries: where a shut valve sticks.
-std::vector<std::pair<int, int>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup);
+/// holds, ascending, each with the rings (indices among the valve boundaries) it is on:
+/// where a shut valve sticks (a node two rings share sticks while either is shut).
+std::vector<std::pair<int, std::vector<int>>> valve_ring_nodes(const TetMesh& mesh, const FluidSetup& setup);
 
 /// The fluid's terms over `partition`'s elements of its regions and their faces;
 /// `cavities`: the circulation's term, whose valve flows drive valve rings (assembled

@@ -76,6 +76,7 @@ void put_record(ByteWriter& w, const StepRecord& s) {
   w.put(s.time);
   w.put<int32_t>(s.iterations);
   w.put<int32_t>(s.cutbacks);
+  w.put<int32_t>(s.retries);
   w.put<uint64_t>(s.residuals.size());
   for (const auto& f : s.residuals) {
     w.put_string(f.field);
@@ -110,6 +111,7 @@ StepRecord get_record(ByteReader& r) {
   s.time = r.get<double>();
   s.iterations = r.get<int32_t>();
   s.cutbacks = r.get<int32_t>();
+  s.retries = r.get<int32_t>();
   const auto fields = r.get<uint64_t>();
   if (fields > r.remaining())
     throw InputError(fmt::format("{}: {} residual fields cannot fit in the bytes left", r.what(), fields));

@@ -228,6 +228,7 @@ json step_entry(const RunSpec& spec, const StepRecord& h) {
                {"time", h.time},
                {"iterations", h.iterations},
                {"cutbacks", h.cutbacks},
+               {"retries", h.retries},
                {"residuals", residuals},
                {"micro_residuals", h.micro_residuals},
                {"gmres_iterations", h.gmres_iterations},
