@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 #include "coordinator/RunSpec.h"
+#include "coordinator/macro/fluid_scene.h"
 
 #include <algorithm>
 #include <type_traits>
@@ -148,6 +149,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
                                             spec.circulation->cavity_names()[c]));
   }
   node.finish();
+  check_fluid_setup(spec.mesh, s);
   return setup;
 }
 

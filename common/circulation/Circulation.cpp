@@ -125,6 +125,8 @@ CavityFlows Circulation::at_rest(double t, std::span<const double> p_cav, std::s
   f.dQout_dport.assign(2 * f.dQ_dp.size(), 0.0);
   f.inflow_open.assign(f.n, false);
   f.outflow_open.assign(f.n, false);
+  f.inflow_reversed.assign(f.n, false);
+  f.outflow_reversed.assign(f.n, false);
   for (int c = 0; c < f.n; ++c) {
     const Link& in = links_[static_cast<size_t>(inflow_valve_[c])];
     const Link& out = links_[static_cast<size_t>(outflow_valve_[c])];
@@ -371,8 +373,16 @@ CavityFlows Circulation::step(double t_new, double dt, std::span<const double> p
     };
     f.inflow_drop.push_back(drop(inflow_valve_[c], false));
     f.outflow_drop.push_back(drop(outflow_valve_[c], false));
-    f.inflow_open.push_back(!ports.shut[static_cast<size_t>(inflow_valve_[c])] && drop(inflow_valve_[c], true) > 0.0);
-    f.outflow_open.push_back(!ports.shut[static_cast<size_t>(outflow_valve_[c])] && drop(outflow_valve_[c], true) > 0.0);
+    const auto passes = [&](int e, double above) {
+      return !ports.shut[static_cast<size_t>(e)] && drop(e, true) > above;
+    };
+    const auto reversed = [&](int e) {
+      return !ports.shut[static_cast<size_t>(e)] && drop(e, true) < -links_[static_cast<size_t>(e)].valve.width;
+    };
+    f.inflow_open.push_back(passes(inflow_valve_[c], 0.0));
+    f.outflow_open.push_back(passes(outflow_valve_[c], 0.0));
+    f.inflow_reversed.push_back(reversed(inflow_valve_[c]));
+    f.outflow_reversed.push_back(reversed(outflow_valve_[c]));
     const bool in_open = f.inflow_open.back(), out_open = f.outflow_open.back();
     f.phase.push_back(phase(in_open, out_open, p_cav[c] - committed[m + c]));
   }

@@ -51,6 +51,10 @@ struct CavityFlows {
   /// Δp across each cavity's inflow / outflow valve with the cavity side at p_c (whatever
   /// ValvePorts says): a shut ring's opening test.
   std::vector<double> inflow_drop, outflow_drop;
+  /// Not held shut, and Δp < −width (the valve's switching width) at the pressure the valve
+  /// sees: blood flows back through it; an open ring's closing test (at Δp ≈ 0 an open
+  /// valve passes nothing, and its state is then the open one).
+  std::vector<bool> inflow_reversed, outflow_reversed;
   std::vector<std::string> phase;     ///< per cavity, Circulation::phase()
   std::vector<double> pressures;      ///< per compartment (compartment_names()), Pa
   std::vector<double> volumes;        ///< per compartment, mm³ (0 for fixed and junctions)

@@ -32,6 +32,7 @@
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/MacroTerm.h"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -146,13 +147,24 @@ class ValveStates {
   bool updated_before_circulation() const { return before_circulation_; }
   /// Held for whole steps (free_iterations 0): whether the converged step agrees with
   /// the states it was solved with; if not, the states are changed to what it says (the
-  /// step is then solved again). With free iterations: always.
+  /// step is then solved again). A ring that chatters (its states this step were all
+  /// contradicted: open, blood flows back; shut, the cavity's pressure would open it)
+  /// stays shut. With free iterations: always.
   bool accept() {
     if (free_iterations_ > 0 || open_.empty()) return true;
     std::vector<bool> next = decide_(open_);
     if (next == open_) return true;
+    tried_.push_back(open_);
+    if (std::find(tried_.begin(), tried_.end(), next) != tried_.end())
+      for (size_t k = 0; k < next.size(); ++k) next[k] = next[k] && open_[k];
+    if (next == open_) return true;
     open_ = std::move(next);
     return false;
+  }
+  /// The step was committed: its tried states are forgotten.
+  void committed() {
+    tried_.clear();
+    release();
   }
   /// The states, for checkpoints.
   const std::vector<bool>& states() const { return open_; }
@@ -168,6 +180,7 @@ class ValveStates {
   Decide decide_;
   int free_iterations_;
   bool before_circulation_ = false;
+  std::vector<std::vector<bool>> tried_;  ///< the states this step was solved with
   std::vector<bool> open_;
   int iteration_ = 0;
 };
@@ -189,7 +202,7 @@ class MovingWallTerm final : public MacroTerm {
   void assemble(const MacroState& state, MacroAssembly& out) override;
   /// Valve rings held for whole steps: whether the converged step agrees with their states.
   bool accept(const MacroState&) override { return !valves_ || valves_->accept(); }
-  void commit(const MacroState&) override { if (valves_) valves_->release(); }
+  void commit(const MacroState&) override { if (valves_) valves_->committed(); }
   void rollback() override { if (valves_) valves_->release(); }
   /// The valve rings' states.
   void save(ByteWriter& w) const override;

@@ -5,6 +5,8 @@
 #include "coordinator/macro/MeshMotionTerm.h"
 #include "coordinator/macro/NavierStokesTerm.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <map>
 #include <limits>
@@ -46,7 +48,9 @@ std::vector<char> nodes_of(const TetMesh& mesh, const FluidSetup& setup, FluidBo
   return on;
 }
 
-void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
+}  // namespace
+
+void check_fluid_setup(const TetMesh& mesh, const FluidSetup& setup) {
   const int order = fluid_velocity_order(setup.element);
   if (mesh.order() != order)
     throw InputError(fmt::format("fluid element {}: needs a {} mesh; this mesh is {}",
@@ -70,20 +74,19 @@ void check_setup(const TetMesh& mesh, const FluidSetup& setup) {
   // pressure (a ring of one coarse triangle inside a no-slip cap).
   const std::vector<char> velocity = nodes_of(mesh, setup, FluidBoundary::Kind::velocity, true);
   const std::vector<char> wall = nodes_of(mesh, setup, FluidBoundary::Kind::moving_wall);
-  for (const FluidBoundary& b : setup.boundaries) {
+  for (size_t k = 0; k < setup.boundaries.size(); ++k) {
+    const FluidBoundary& b = setup.boundaries[k];
     if (b.kind != FluidBoundary::Kind::flux) continue;
     bool free = false;
     for (const auto& tri : mesh.faces.at(b.set))
       for (int a : mesh.face_nodes(tri)) free = free || !(velocity[static_cast<size_t>(a)] || wall[static_cast<size_t>(a)]);
     if (!free)
-      throw InputError(fmt::format("fluid boundary '{}' ({}): every node of its faces is held by a velocity, no_slip "
-                                   "or moving_wall set, so no blood can pass it; expected nodes of its own (a finer "
-                                   "mesh there, or a wider ring)",
-                                   b.set, b.valve ? "a valve ring" : "a flux face"));
+      throw InputError(fmt::format("/fluid/boundaries/{}/set: '{}' ({}): every node of its faces is held by a velocity, "
+                                   "no_slip or moving_wall set, so no blood can pass it; expected nodes of its own (a "
+                                   "finer mesh there, or a wider ring)",
+                                   k, b.set, b.valve ? "a valve ring" : "a flux face"));
   }
 }
-
-}  // namespace
 
 std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup) {
   const std::vector<char> fluid = fluid_nodes(mesh, setup);
@@ -112,7 +115,7 @@ std::vector<std::pair<int, std::vector<int>>> valve_ring_nodes(const TetMesh& me
 }
 
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup) {
-  check_setup(mesh, setup);
+  check_fluid_setup(mesh, setup);
   MacroExtension ext;
   ext.fields.push_back({"fluid_velocity", 3, FieldSpace::nodal, setup.regions, 0, setup.time,
                         ResidualNorm::relative_to_load, setup.rtol});
@@ -185,11 +188,13 @@ std::function<double(double)> flux_of(const FluidBoundary& b, const CavityPressu
 
 /// The valve rings' states from the circulation's valves: a shut ring opens when the
 /// pressure drop across its valve with the cavity at p_c is positive; an open ring stays
-/// open while its valve passes blood forward (Δp > 0 at the pressure the valve sees: two-way,
-/// the ring's own); while the wall is inflated the inflow ring is open. One-way, the states
-/// follow the iterate during a step's first iterations; two-way they are held for whole
-/// steps and checked at convergence (ValveStates::accept): with the ring's pressure an
-/// unknown, a state decided from an unconverged iterate chatters.
+/// open while its valve passes blood forward (Δp > 0 across it); while the wall is inflated
+/// the inflow ring is open. One-way, the states follow the iterate during a step's first
+/// iterations. Two-way they are held for whole steps and checked at convergence
+/// (ValveStates::accept): with the ring's pressure an unknown, a state decided from an
+/// unconverged iterate chatters; and an open ring shuts only once blood flows back through
+/// its valve (Δp below minus the valve's width at the ring's pressure), since a valve
+/// open at Δp ≈ 0 passes nothing and is as consistent as a shut one.
 std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityPressureTerm* cavities) {
   std::vector<FluidBoundary::Valve> valves;
   for (const FluidBoundary& b : setup.boundaries) {
@@ -199,7 +204,8 @@ std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityP
     valves.push_back(*b.valve);
   }
   if (valves.empty()) return nullptr;
-  return std::make_shared<ValveStates>([cavities, valves](const std::vector<bool>& previous) {
+  const bool held_for_steps = setup.two_way;
+  return std::make_shared<ValveStates>([cavities, valves, held_for_steps](const std::vector<bool>& previous) {
     const CavityFlows& f = cavities->flows();
     std::vector<bool> open;
     for (size_t k = 0; k < valves.size(); ++k) {
@@ -210,8 +216,13 @@ std::shared_ptr<ValveStates> valve_states(const FluidSetup& setup, const CavityP
         continue;
       }
       const bool passes = v.outflow ? f.outflow_open[c] : f.inflow_open[c];
+      const bool stays = held_for_steps ? !(v.outflow ? f.outflow_reversed[c] : f.inflow_reversed[c]) : passes;
       const bool opens = (v.outflow ? f.outflow_drop[c] : f.inflow_drop[c]) > 0.0;
-      open.push_back(previous.empty() || previous[k] || f.phase[c] == "inflation" ? passes : opens);
+      open.push_back(previous.empty() || f.phase[c] == "inflation" ? passes : previous[k] ? stays : opens);
+      if (!previous.empty() && previous[k] != open.back())
+        spdlog::debug("valve ring {} of cavity {}: {} (Δp {:.6g} Pa across the valve at p_c; Q {:.6g} mm³/s)",
+                      v.outflow ? "outflow" : "inflow", v.cavity, open.back() ? "opens" : "shuts",
+                      v.outflow ? f.outflow_drop[c] : f.inflow_drop[c], v.outflow ? f.Q_out[c] : f.Q_in[c]);
     }
     return open;
   }, setup.two_way ? 0 : 5);

@@ -48,6 +48,10 @@ namespace fe2 {
 /// or the element does not match the mesh's order (Taylor–Hood: quadratic; P1/P1: linear).
 MacroExtension fluid_extension(const TetMesh& mesh, const FluidSetup& setup);
 
+/// The setup's checks against its mesh (the element's order, the sets, a flux face or
+/// valve ring with a node of its own); throws InputError naming the boundary.
+void check_fluid_setup(const TetMesh& mesh, const FluidSetup& setup);
+
 /// The fluid's nodes of its moving_wall sets that no velocity condition prescribes,
 /// ascending: the nodes where v = v̂ is imposed.
 std::vector<int> moving_wall_nodes(const TetMesh& mesh, const FluidSetup& setup);

@@ -132,6 +132,14 @@ fe2_cli_test(cli.bad_input.fluid_two_way_without_rings 2
 fe2_cli_test(cli.bad_input.lv_cavity_rings_overlap 2
              "/mesh: make_lv_mesh: ring 'mitral' and ring 'aortic': gap = -1.5: expected discs that do not overlap"
              ARGS validate ${FE2_CLI_BAD}/lv_cavity_rings_overlap.json)
+# A flux face or valve ring that another condition holds at every node passes nothing;
+# two rings for one valve would split its flow.
+fe2_cli_test(cli.bad_input.fluid_flux_face_held 2
+             "/fluid/boundaries/3/set: 'mitral' [(]a valve ring[)]: every node of its faces is held by a velocity, no_slip or moving_wall set"
+             ARGS validate ${FE2_CLI_BAD}/fluid_flux_face_held.json)
+fe2_cli_test(cli.bad_input.fluid_two_rings_one_valve 2
+             "/fluid/boundaries/3/side: got \"inflow\", expected the inflow valve of cavity 'lv' once [(]ring 'mitral' is already its ring[)]"
+             ARGS validate ${FE2_CLI_BAD}/fluid_two_rings_one_valve.json)
 fe2_cli_test(cli.bad_input.fluid_valve_unknown_cavity 2
              "/fluid/boundaries/3/cavity: got \"lvv\", expected a cavity of the circulation [(]lv[)]; did you mean \"lv\"[?]"
              ARGS validate ${FE2_CLI_BAD}/fluid_valve_unknown_cavity.json)
