@@ -258,7 +258,7 @@ TEST(FluidTwoWay, ValveRingsCoupleTheBloodToTheCirculation) {
   }
 }
 
-// The default beat's heart with blood (configs/lv-beat-blood.json with the macro law of
+// The default beat's heart with blood (configs/lv-beat-blood-macro.json, the macro law of
 // configs/lv-beat-macro.json at its points), from end-diastole through the ejection into
 // the isovolumic relaxation (t = 0.16 s, 8 ms steps; about 50 s). An open ring's valve is
 // driven by the ring's own pressure λ (impedance condition): the ejection converges in a
@@ -273,7 +273,7 @@ TEST(FluidTwoWay, ValveRingsCoupleTheBloodToTheCirculation) {
 TEST(FluidTwoWay, TheBeatWithBloodEjectsThroughTheAorticRing) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(FE2_SOURCE_DIR) / "configs";
-  json j = json::parse(std::ifstream(dir / "lv-beat-blood.json"));
+  json j = json::parse(std::ifstream(dir / "lv-beat-blood-macro.json"));
   const json macro = json::parse(std::ifstream(dir / "lv-beat-macro.json"));
   j["models"] = macro["models"];
   j["output"] = {{"vtu", false}};
