@@ -192,6 +192,7 @@ Simulation::Outcome Simulation::iterate(int step, int it, double t_new, double d
     coupling_.evaluate(step, it, t_new, dt, problem_.x(), problem_.v(), field_rate, c);
   }
   ScopedWallTimer macro(timing.macro);
+  ScopedCpuTimer macro_cpu(timing.macro_cpu_max);  // this rank's; newton() takes the group's max
   {
     ScopedWallTimer t(timing.assemble);
     problem_.assemble(t_new, dt, lift);
@@ -226,7 +227,10 @@ Simulation::Outcome Simulation::iterate(int step, int it, double t_new, double d
   }
   {
     ScopedWallTimer t(timing.solve);
+    const MacroSolver::Stats before = macro_solver_stats();
     problem_.solve(it == 1 && !spec_.dynamic);
+    timing.macro_factorized = macro_solver_stats().factorizations - before.factorizations;
+    timing.macro_gmres = macro_solver_stats().gmres_iterations - before.gmres_iterations;
   }
   if (search) search->start(measure);
   return Outcome::solved;
@@ -265,6 +269,11 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
                     search.alpha());
       outcome = Outcome::rejected;
     }
+    // Every coordinator gets here alike (the outcomes are agreed): the group's macro CPU.
+    timing.coordinators = group_.size();
+    timing.macro_cpu_sum = timing.macro_cpu_max;
+    group_.allreduce_sum(&timing.macro_cpu_sum, 1);
+    timing.macro_cpu_max = group_.allreduce_max(timing.macro_cpu_max);
     if (on_iteration_) on_iteration_(timing);
     if (outcome == Outcome::converged) {
       rec.iterations += it;

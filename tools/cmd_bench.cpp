@@ -10,6 +10,7 @@
 // low-rank), under "single".
 #include "common/cpu_timer.h"
 #include "common/error.h"
+#include "common/median.h"
 #include "common/materials/NeoHookean.h"
 #include "tools/commands.h"
 #include "worker/MicroUnit.h"
@@ -29,12 +30,7 @@ namespace {
 // The runs' default micro_rtol: the bench's Newton solve stops where a run's would.
 constexpr double kNewtonRtol = 1e-8;
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return fe2::median(std::move(v), std::numeric_limits<double>::quiet_NaN()); }
 }  // namespace
 
 int bench_blas(bool suggested_only) {

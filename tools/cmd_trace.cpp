@@ -38,6 +38,20 @@ int trace_summary(const std::string& dir, bool as_json) {
              s.first_rebalance_iteration >= 0
                  ? fmt::format(" (first at iteration {} of the trace)", s.first_rebalance_iteration + 1)
                  : "");
+  const MacroCost& m = s.macro_cost;
+  if (!m.cpu_recorded) return 0;  // traces of older runs: no breakdown
+  fmt::print("  macro           {} coordinator(s); CPU of the busiest summed over iterations {:.4g} s (all "
+             "coordinators {:.4g} s)\n",
+             m.coordinators, m.cpu_critical, m.cpu_total);
+  const auto row = [](const char* what, const MacroCost::Kind& k) {
+    if (k.count == 0) return;
+    fmt::print("    {:<20} {:>5} iterations, medians: CPU {:.4g} s, wall {:.4g} s (assembly {:.4g}, solve "
+               "{:.4g}), GMRES {:.3g}\n",
+               what, k.count, k.cpu, k.wall, k.assemble, k.solve, k.gmres);
+  };
+  row("factorizing", m.factorizing);
+  row("kept factor", m.kept);
+  row("converged (no solve)", m.none);
   return 0;
 }
 
@@ -86,7 +100,16 @@ FarmOptions farm_options_of_run(const FarmSimOptions& o) {
 
 int farm_sim(const FarmSimOptions& o) {
   const TraceData t = read_traces(o.dir);
-  const FarmSimInput in = farm_sim_input(t);
+  FarmSimInput in = farm_sim_input(t);
+  if (!o.macro_from.empty()) {
+    const MacroCost c = macro_cost(read_traces(o.macro_from));
+    replace_macro(in, c);
+    fmt::print("macro costs from {} ({} coordinator(s), {}): {:.4g} s per factorizing iteration, {:.4g} s "
+               "per kept-factor one, {:.4g} s per converged check\n",
+               o.macro_from, c.coordinators, c.cpu_recorded ? "busiest coordinator's CPU" : "wall time",
+               c.predict(MacroSolveKind::factorizing), c.predict(MacroSolveKind::kept),
+               c.predict(MacroSolveKind::none));
+  }
   const long long measured = static_cast<long long>(in.state_bytes.size());
   const FarmOptions f = farm_options_of_run(o);
   std::vector<int> worker_counts = o.workers;

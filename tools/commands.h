@@ -84,6 +84,9 @@ struct FarmSimOptions {
   std::optional<double> latency, bandwidth, min_gain, tolerated_imbalance;
   std::optional<int> batch;
   double macro_scale = 1.0;
+  /// Another run's folder: its macro costs per Newton iteration (by kind: factorizing,
+  /// kept-factor, no solve) replace the replayed run's (a macro of another size).
+  std::string macro_from;
   long long max_units = 3000000;
 };
 int farm_sim(const FarmSimOptions& o);

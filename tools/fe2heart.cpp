@@ -156,6 +156,10 @@ int main(int argc, char** argv) {
                     "default: the run's farm.tolerated_imbalance")
       ->check(CLI::Range(0.0, 10.0));
   c_sim->add_option("--macro-scale", sim.macro_scale, "multiply the measured Macro time");
+  c_sim->add_option("--macro-from", sim.macro_from,
+                    "a run folder whose macro costs replace the replayed run's, iteration by iteration "
+                    "of the same kind (factorizing, kept-factor, no solve): the busiest coordinator's CPU "
+                    "medians (e.g. a macro-law run at the paper's macro size)");
   c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
 
   fe2::cli::StudyOptions study;

@@ -3,6 +3,7 @@
 400 steps) from a measured beat's rates and measured unit costs.
 
     /usr/bin/python3 tools/project_beat_cost.py RUN_DIR SMALL.json LARGE.json [--units 6144] [--steps 400]
+        [--macro MACRO_DIR]
 
 RUN_DIR   a beat run with FE² units (its summary.json): the rates per step and per
           unit-iteration, and the micro CPU it spent;
@@ -16,7 +17,14 @@ do more than the bench's (Holzapfel–Ogden cells, viscosity, Land 2017 sub-step
 extra, measured = beat's micro CPU per unit-iteration − t(SMALL), is scaled by the number
 of elements (LARGE / SMALL) and added. It keeps the beat's Newton iterations per step and
 its cells' sub-steps per step (10 ms steps here; the paper's 2 ms steps would need fewer of
-both), so the projection is an upper estimate. Every input is printed beside the result."""
+both), so the projection is an upper estimate. Every input is printed beside the result.
+
+With --macro MACRO_DIR (a run of the macro at the paper's size, tools/bench_macro.sh), the
+macro per Newton iteration is added: RUN_DIR's mix of iterations (factorizing, kept-factor,
+converged check: its trace) times MACRO_DIR's medians of each kind (the busiest
+coordinator's CPU). With one unit per worker the workers wait while the macro solves, so the
+beat's core-hours are (units + coordinators) × iterations × (unit-iteration + macro), and
+Macro/Entire = macro / (unit-iteration + macro) (perfect balance: a lower bound)."""
 import argparse
 import json
 import os
@@ -47,6 +55,38 @@ def per_unit_iteration_ms(b, gmres, refreshes):
     return b["assembly_ms"] + gmres * per_gmres + refreshes * b["refresh_ms"]
 
 
+def iterations(run_dir):
+    path = os.path.join(run_dir, "trace_iterations.jsonl")
+    try:
+        with open(path) as f:
+            return [json.loads(line) for line in f if line.strip()]
+    except (OSError, ValueError) as e:
+        sys.exit(f"project_beat_cost.py: cannot read {path}: {e}")
+
+
+def kind(it):
+    if "macro_factorized" not in it:
+        return None
+    if it["macro_factorized"] > 0:
+        return "factorizing"
+    return "kept" if it["solve"] > 0 else "none"
+
+
+def macro_per_iteration(run_dir, macro_dir):
+    """RUN_DIR's mix of macro-solve kinds × MACRO_DIR's CPU medians per kind (seconds)."""
+    import statistics
+    mine, theirs = iterations(run_dir), iterations(macro_dir)
+    if any(kind(it) is None for it in mine + theirs):
+        sys.exit("project_beat_cost.py: --macro: a trace without macro_factorized (a run of an older fe2heart)")
+    cost = {}
+    for k in ("factorizing", "kept", "none"):
+        xs = [it["macro_cpu_max"] for it in theirs if kind(it) == k]
+        cost[k] = statistics.median(xs) if xs else statistics.median(it["macro_cpu_max"] for it in theirs)
+    mix = {k: sum(kind(it) == k for it in mine) / len(mine) for k in cost}
+    coordinators = max(it["coordinators"] for it in theirs)
+    return sum(mix[k] * cost[k] for k in cost), mix, cost, coordinators
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run_dir")
@@ -54,6 +94,7 @@ def main():
     ap.add_argument("large")
     ap.add_argument("--units", type=int, default=6144)
     ap.add_argument("--steps", type=int, default=400)
+    ap.add_argument("--macro", help="a run of the macro at the paper's size (tools/bench_macro.sh)")
     a = ap.parse_args()
     s = load(os.path.join(a.run_dir, "summary.json"))
     small, large = bench_bits(load(a.small), a.small), bench_bits(load(a.large), a.large)
@@ -80,6 +121,17 @@ def main():
           f"x{scale:.0f} elements {extra_ms * scale:.1f} ms = {large_ms:.1f} ms (projected)")
     print(f"projected: {a.units} units x {a.steps} steps x {newton_per_step:.2f} x {large_ms:.1f} ms = "
           f"{core_seconds:.3g} core-seconds = {core_seconds / 3600:.0f} core-hours per beat")
+    if a.macro:
+        macro_s, mix, cost, coordinators = macro_per_iteration(a.run_dir, a.macro)
+        micro_s = large_ms / 1e3
+        its = a.steps * newton_per_step
+        total = (a.units + coordinators) * its * (micro_s + macro_s)
+        print(f"macro of {a.macro} ({coordinators} coordinator(s), busiest coordinator's CPU, measured): "
+              + ", ".join(f"{k} {cost[k]:.3f} s x {mix[k]:.2f} of the beat's iterations" for k in cost)
+              + f" = {macro_s:.3f} s per Newton iteration")
+        print(f"  one unit per worker: Entire per iteration {micro_s:.3f} + {macro_s:.3f} s, Macro/Entire "
+              f"{macro_s / (micro_s + macro_s):.3f}; ({a.units} + {coordinators}) cores x {its:.0f} iterations = "
+              f"{total / 3600:.0f} core-hours per beat (projected)")
 
 
 if __name__ == "__main__":

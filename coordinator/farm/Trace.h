@@ -28,6 +28,12 @@ struct IterationTiming {
   double macro = 0.0;     ///< (g) assembly, (i) convergence test and (h) solve
   double assemble = 0.0;  ///< (g) the macro terms
   double solve = 0.0;     ///< (h) MUMPS
+  /// The macro phase's thread CPU seconds on the busiest coordinator (the critical path
+  /// when coordinators share cores) and summed over the coordinator group.
+  double macro_cpu_max = 0.0, macro_cpu_sum = 0.0;
+  int coordinators = 1;
+  int macro_factorized = 0;  ///< the solve factored S̄ (0: kept factor, or no solve)
+  int macro_gmres = 0;       ///< GMRES iterations of a solve with the kept factor
   double comm1 = 0.0, comm2 = 0.0;
   long long bytes = 0;
   int migrations = 0;

@@ -16,6 +16,7 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
   for (const auto& it : t.iterations) {
     index[{it.at("step").get<int>(), it.at("iteration").get<int>()}] = in.macro.size();
     in.macro.push_back(it.at("macro").get<double>());
+    in.macro_kind.push_back(macro_solve_kind(it));
     in.step.push_back(it.at("step").get<int>());
   }
   // The units that travelled, numbered densely (points evaluated by their coordinators,
@@ -44,6 +45,10 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
   for (double& b : in.state_bytes)
     if (b <= 0.0) b = default_state_bytes;
   return in;
+}
+
+void replace_macro(FarmSimInput& in, const MacroCost& cost) {
+  for (size_t i = 0; i < in.macro.size(); ++i) in.macro[i] = cost.predict(in.macro_kind[i]);
 }
 
 FarmSimResult simulate_farm(const FarmSimInput& in, int workers, long long units,

@@ -26,6 +26,7 @@ struct FarmSimInput {
   std::vector<std::vector<char>> refreshed;       ///< [iteration][unit]
   std::vector<std::vector<double>> refresh_part;  ///< [iteration][unit] factorization CPU
   std::vector<double> macro;                      ///< [iteration] seconds
+  std::vector<MacroSolveKind> macro_kind;         ///< [iteration]
   std::vector<int> step;                          ///< [iteration] time step (empty: each new)
   std::vector<double> state_bytes;                ///< [unit]
 };
@@ -33,6 +34,10 @@ struct FarmSimInput {
 /// From a run's traces; `state_bytes` per measured unit is the largest its jobs
 /// reported (`default_state_bytes` for traces that do not record it).
 FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes = 1e6);
+
+/// Replaces each iteration's macro time by `cost`'s prediction for its kind (a macro
+/// measured in another run).
+void replace_macro(FarmSimInput& in, const MacroCost& cost);
 
 struct FarmSimResult {
   double micro = 0.0;       ///< Σ predicted Micro+L+C

@@ -1,6 +1,7 @@
 #include "coordinator/farm/trace_analysis.h"
 
 #include "common/error.h"
+#include "common/median.h"
 
 #include <algorithm>
 #include <fstream>
@@ -34,7 +35,60 @@ std::vector<nlohmann::json> read_lines(const std::string& path, bool required) {
   return out;
 }
 
+double median(std::vector<double> v) { return fe2::median(std::move(v), 0.0); }
+
 }  // namespace
+
+MacroSolveKind macro_solve_kind(const nlohmann::json& it) {
+  if (!it.contains("macro_factorized")) return MacroSolveKind::unknown;
+  if (it.at("macro_factorized").get<int>() > 0) return MacroSolveKind::factorizing;
+  return it.at("solve").get<double>() > 0 ? MacroSolveKind::kept : MacroSolveKind::none;
+}
+
+double MacroCost::predict(MacroSolveKind k) const {
+  const Kind* kind = k == MacroSolveKind::factorizing ? &factorizing
+                     : k == MacroSolveKind::kept     ? &kept
+                     : k == MacroSolveKind::none     ? &none
+                                                     : nullptr;
+  return kind && kind->count > 0 ? kind->cpu : solving_median;
+}
+
+MacroCost macro_cost(const TraceData& t) {
+  MacroCost c;
+  struct Samples {
+    std::vector<double> wall, cpu, assemble, solve, gmres;
+  } f, k, n;
+  std::vector<double> solving;
+  for (const auto& it : t.iterations) {
+    const double wall = it.at("macro").get<double>();
+    c.cpu_recorded = it.contains("macro_cpu_max");
+    const double cpu = it.value("macro_cpu_max", wall);
+    c.cpu_critical += cpu;
+    c.cpu_total += it.value("macro_cpu_sum", wall);
+    c.coordinators = std::max(c.coordinators, it.value("coordinators", 1));
+    const MacroSolveKind kind = macro_solve_kind(it);
+    Samples& s = kind == MacroSolveKind::factorizing ? f : kind == MacroSolveKind::none ? n : k;
+    s.wall.push_back(wall);
+    s.cpu.push_back(cpu);
+    s.assemble.push_back(it.at("assemble").get<double>());
+    s.solve.push_back(it.at("solve").get<double>());
+    s.gmres.push_back(it.value("macro_gmres", 0));
+    if (kind != MacroSolveKind::none) solving.push_back(cpu);
+  }
+  const auto fill = [](MacroCost::Kind& kind, const Samples& s) {
+    kind.count = static_cast<int>(s.wall.size());
+    kind.wall = median(s.wall);
+    kind.cpu = median(s.cpu);
+    kind.assemble = median(s.assemble);
+    kind.solve = median(s.solve);
+    kind.gmres = median(s.gmres);
+  };
+  fill(c.factorizing, f);
+  fill(c.kept, k);
+  fill(c.none, n);
+  c.solving_median = median(solving);
+  return c;
+}
 
 TraceData read_traces(const std::string& dir) {
   TraceData t;
@@ -105,7 +159,23 @@ TraceSummary summarize(const TraceData& t) {
   std::map<int, int> units;
   for (const auto& u : t.units) units[u.at("unit").get<int>()] = 1;
   s.units = static_cast<int>(units.size());
+  s.macro_cost = macro_cost(t);
   return s;
+}
+
+nlohmann::json to_json(const MacroCost& c) {
+  const auto kind = [](const MacroCost::Kind& k) {
+    return nlohmann::json{{"iterations", k.count},          {"median_wall_seconds", k.wall},
+                          {"median_cpu_seconds", k.cpu},    {"median_assemble_seconds", k.assemble},
+                          {"median_solve_seconds", k.solve}, {"median_gmres", k.gmres}};
+  };
+  return {{"coordinators", c.coordinators},
+          {"cpu_recorded", c.cpu_recorded},
+          {"cpu_critical_seconds", c.cpu_critical},
+          {"cpu_total_seconds", c.cpu_total},
+          {"factorizing", kind(c.factorizing)},
+          {"kept_factor", kind(c.kept)},
+          {"no_solve", kind(c.none)}};
 }
 
 nlohmann::json to_json(const TraceSummary& s) {
@@ -126,7 +196,8 @@ nlohmann::json to_json(const TraceSummary& s) {
           {"micro_phase_efficiency", s.micro_efficiency},
           {"bytes_per_unit_iteration", s.bytes_per_unit_iteration},
           {"migrations", s.migrations},
-          {"first_rebalance_iteration", s.first_rebalance_iteration}};
+          {"first_rebalance_iteration", s.first_rebalance_iteration},
+          {"macro", to_json(s.macro_cost)}};
 }
 
 }  // namespace fe2

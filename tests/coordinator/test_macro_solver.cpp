@@ -2,9 +2,14 @@
 // `newton.macro_solver.refresh: adaptive`). GMRES on the current S̄, preconditioned by
 // the kept MUMPS factor, solves each Newton system to 1e-12: the run takes the same Newton
 // iterations to the same answer as factoring every iteration, with fewer factorizations.
+#include "coordinator/farm/Trace.h"
+#include "coordinator/farm/farm_sim.h"
 #include "tests/coordinator/scene_fixtures.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 namespace fe2 {
 namespace {
@@ -54,6 +59,79 @@ TEST(MacroSolver, KeptFactorGivesTheSameNewtonRunWithFewerFactorizations) {
   for (const StepRecord& h : kept.result.history)
     checked += test::expect_quadratic_iterations(h.residual("displacement"), "step " + std::to_string(h.step));
   EXPECT_GT(checked, 4);
+}
+
+// The trace says, per Newton iteration, what the macro solve was (factorizing, a kept
+// factor with its GMRES iterations, none) and the coordinators' macro CPU; `trace
+// summary` and `farm-sim --macro-from` read it back by kind.
+TEST(MacroSolver, TraceRecordsEachIterationsMacroSolveAndFarmSimReplaysItsCost) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / fmt::format("fe2_macro_trace_{}", getpid());
+  fs::create_directories(dir);
+  MacroSolver::Stats stats;
+  RunResult result;
+  {
+    const RunSpec spec = read_run_spec(inflated_lv("adaptive"), "");
+    LocalEvaluator points(spec.models, spec.model_of_points());
+    Simulation sim(spec, points);
+    Trace trace(dir.string());
+    result = sim.run({}, [&](const IterationTiming& t) { trace.iteration(t); });
+    stats = sim.macro_solver_stats();
+    trace.offsets();  // flushes
+  }
+  ASSERT_TRUE(result.converged) << result.error;
+  const TraceData data = read_traces(dir.string());
+  int factorized = 0, gmres = 0;
+  for (const auto& it : data.iterations) {
+    factorized += it.at("macro_factorized").get<int>();
+    gmres += it.at("macro_gmres").get<int>();
+    EXPECT_EQ(it.at("coordinators").get<int>(), 1);
+    EXPECT_GE(it.at("macro_cpu_max").get<double>(), 0.0);
+    EXPECT_EQ(it.at("macro_cpu_sum").get<double>(), it.at("macro_cpu_max").get<double>());  // one coordinator
+  }
+  EXPECT_EQ(factorized, stats.factorizations);
+  EXPECT_EQ(gmres, stats.gmres_iterations);
+  const MacroCost cost = macro_cost(data);
+  std::printf("%zu iterations: %d factorizing (median CPU %.3g s), %d kept-factor (%.3g s, GMRES %.3g), %d "
+              "without a solve (%.3g s)\n",
+              data.iterations.size(), cost.factorizing.count, cost.factorizing.cpu, cost.kept.count, cost.kept.cpu,
+              cost.kept.gmres, cost.none.count, cost.none.cpu);
+  EXPECT_TRUE(cost.cpu_recorded);
+  EXPECT_EQ(cost.factorizing.count, stats.factorizations);  // one factorization per solve at most here
+  EXPECT_EQ(cost.kept.count, stats.reused);
+  EXPECT_GE(cost.none.count, result.steps);  // each step ends with an iteration that only checks
+  EXPECT_EQ(cost.factorizing.count + cost.kept.count + cost.none.count, result.newton_iterations);
+  EXPECT_GT(cost.kept.gmres, 0.0);
+  EXPECT_GT(cost.factorizing.solve, cost.kept.solve);  // why the factor is kept
+
+  // farm-sim --macro-from: each replayed iteration takes the other run's median of its kind.
+  FarmSimInput in;
+  for (const auto& it : data.iterations) {
+    in.macro.push_back(123.0);
+    in.macro_kind.push_back(macro_solve_kind(it));
+    in.cost.push_back({1.0, 2.0});
+    in.refreshed.push_back({0, 0});
+    in.refresh_part.push_back({0.0, 0.0});
+  }
+  in.macro_kind.back() = MacroSolveKind::unknown;  // an older trace's iteration
+  in.state_bytes = {1.0, 1.0};
+  replace_macro(in, cost);
+  double expected = 0.0;
+  for (size_t i = 0; i < in.macro.size(); ++i) {
+    const MacroSolveKind k = in.macro_kind[i];
+    const double want = k == MacroSolveKind::factorizing ? cost.factorizing.cpu
+                        : k == MacroSolveKind::kept      ? cost.kept.cpu
+                        : k == MacroSolveKind::none      ? cost.none.cpu
+                                                         : cost.solving_median;
+    EXPECT_EQ(in.macro[i], want) << "iteration " << i;
+    expected += want;
+  }
+  FarmOptions o;
+  o.latency = 0.0;
+  o.bandwidth = std::numeric_limits<double>::infinity();
+  const FarmSimResult r = simulate_farm(in, 2, 2, o);
+  EXPECT_NEAR(r.entire - r.micro, expected, 1e-12 * expected);
+  fs::remove_all(dir);
 }
 
 TEST(MacroSolver, SpecReadsThePolicyAndRefusesABadTolerance) {
