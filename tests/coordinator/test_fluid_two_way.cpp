@@ -332,10 +332,73 @@ TEST(FluidTwoWay, TheBeatWithBloodEjectsThroughTheAorticRing) {
   std::printf("volume balance: worst |dV/dt − ring inflow| %.0f mm³/s, peak ring flow %.0f mm³/s\n", worst_balance,
               peak_flow);
   EXPECT_LT(worst_balance, 0.05 * peak_flow);
+  // Newton through the valve events (the step solved with the rings' states that held):
+  // the mitral ring shutting, the aortic ring opening. The convergence order
+  // log r_{k+1} / log r_k of the wall's residual is 1.85–2.2 (quadratic); the blood's is
+  // 1.6–1.7 in the steps where flow through a ring starts (inflation -> filling, the
+  // aortic opening), 1.9–2.2 elsewhere: superlinear, not cleanly quadratic there (the same
+  // with the aortic ring's backflow term off: its (c·n)⁻ kink is not the cause; not yet
+  // understood). A missing coupling term makes it linear (order ≈ 1): bounded below by 1.5.
+  int events = 0;
+  for (size_t s = 1; s < r.history.size(); ++s) {
+    const StepRecord &h = r.history[s], &p = r.history[s - 1];
+    if (h.time <= 0.0 || h.circulation.phase[0] == p.circulation.phase[0]) continue;
+    ++events;
+    for (const char* field : {"displacement", "fluid_velocity"}) {
+      const std::vector<double>& res = h.residual(field);
+      int checked = 0;
+      for (size_t k = 1; k + 1 < res.size(); ++k) {
+        if (res[k] > 1e-2 || res[k + 1] < 1e-13) continue;
+        const double order = std::log(res[k + 1]) / std::log(res[k]);
+        std::printf("t = %.3f (%s -> %s) %s: %.2e -> %.2e, order %.2f\n", h.time, p.circulation.phase[0].c_str(),
+                    h.circulation.phase[0].c_str(), field, res[k], res[k + 1], order);
+        EXPECT_GT(order, 1.5) << "t = " << h.time << " " << field;
+        ++checked;
+      }
+      EXPECT_GE(checked, 1) << "t = " << h.time << " " << field;
+    }
+  }
+  EXPECT_GE(events, 2);  // filling -> isovolumic contraction -> ejection
   EXPECT_GE(ejecting, 4);
   EXPECT_LE(worst_ejection_newton, 8);
   EXPECT_NEAR(sv_blood / sv_lumped, 1.0, 0.1);
   EXPECT_NEAR(peak_ring / peak_lumped, 1.0, 0.15);
+}
+
+// Hard case: the stiffest phase at twice the default step (20 ms instead of the beat's
+// 10 ms): the isovolumic contraction with blood — both rings shut, the enclosed blood
+// incompressible — converges in a few Newton iterations, keeps the blood's volume (to
+// BDF1's O(Δd²) mesh volume a step), and the aortic ring opens.
+TEST(FluidTwoWay, TheIsovolumicContractionWithBloodTakesTwiceTheDefaultStep) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(FE2_SOURCE_DIR) / "configs";
+  json j = json::parse(std::ifstream(dir / "lv-beat-blood-macro.json"));
+  j["output"] = {{"vtu", false}};
+  j["time"] = {{"t_end", 0.1}, {"steps", 5}, {"inflation_steps", 20}};
+  const RunResult r = run(j);
+  ASSERT_TRUE(r.converged) << r.error;
+  int isovolumic = 0, worst_newton = 0;
+  double worst_drift = 0.0;
+  bool opened = false;
+  for (size_t s = 1; s < r.history.size(); ++s) {
+    const StepRecord &h = r.history[s], &p = r.history[s - 1];
+    if (h.time <= 0.0) continue;
+    EXPECT_NEAR(observable(h, "fluid_volume") / h.cavity_volumes[0], 1.0, 1e-12) << "t = " << h.time;
+    opened = opened || h.circulation.phase[0] == "ejection";
+    if (h.circulation.phase[0] != "isovolumic contraction") continue;
+    ++isovolumic;
+    worst_newton = std::max(worst_newton, h.iterations);
+    worst_drift = std::max(worst_drift, std::abs(h.cavity_volumes[0] / p.cavity_volumes[0] - 1.0));
+    EXPECT_NEAR(observable(h, "flux:mitral"), 0.0, 1e-9) << "t = " << h.time;
+    EXPECT_NEAR(observable(h, "flux:aortic"), 0.0, 1e-9) << "t = " << h.time;
+  }
+  std::printf("20-ms steps: %d isovolumic steps, worst %d Newton iterations, volume drift %.2e a step; aortic "
+              "ring opened: %s\n",
+              isovolumic, worst_newton, worst_drift, opened ? "yes" : "no");
+  EXPECT_GE(isovolumic, 1);
+  EXPECT_LE(worst_newton, 12);
+  EXPECT_LT(worst_drift, 2e-3);
+  EXPECT_TRUE(opened);
 }
 
 }  // namespace
