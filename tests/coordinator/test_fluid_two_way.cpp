@@ -7,6 +7,7 @@
 #include "common/circulation/beat_summary.h"
 #include "common/mesh/cavity_volume.h"
 #include "tests/coordinator/fluid_fixtures.h"
+#include "tests/coordinator/scene_fixtures.h"
 #include "coordinator/macro/MacroPartition.h"
 #include "coordinator/macro/fluid_scene.h"
 #include "coordinator/macro/macro_scene.h"
@@ -399,6 +400,53 @@ TEST(FluidTwoWay, TheIsovolumicContractionWithBloodTakesTwiceTheDefaultStep) {
   EXPECT_LE(worst_newton, 12);
   EXPECT_LT(worst_drift, 2e-3);
   EXPECT_TRUE(opened);
+}
+
+// FE² units that are the macro law (homogeneous units of the same Holzapfel–Ogden + Land
+// 2017 material, a volumetric penalty so the units have one) give the macro-law beat with
+// blood: the homogenized law of a homogeneous unit is the law itself, and the blood, the
+// rings and the circulation see the same wall. The default beat's LV with two-way blood
+// in 20-ms steps from end-diastole through the aortic ring's opening into the ejection
+// (about 70 s).
+TEST(FluidTwoWay, HomogeneousUnitsOfTheMacroLawGiveTheMacroBeatWithBlood) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::path(FE2_SOURCE_DIR) / "configs" / "lv-beat-blood-macro.json";
+  auto beat = [&](bool fe2) {
+    json j = json::parse(std::ifstream(file));
+    j["output"] = {{"vtu", false}};
+    j["time"] = {{"t_end", 0.08}, {"steps", 4}, {"inflation_steps", 10}};  // filled in 0.2 s, as the config
+    // 1e-10: the blood's round-off floor (1806 unknowns, kPa pressures on mm faces)
+    j["newton"] = {{"rtol", 1e-10}, {"micro_rtol", 1e-12}, {"max_iterations", 30}};
+    json material = j["models"]["myocardium"]["material"];
+    material["volumetric"] = "penalty";
+    material["kappa"] = 1e6;
+    j["models"]["myocardium"] = fe2 ? json{{"kind", "fe2"}, {"unit", test::homogeneous_unit(material)}}
+                                    : json{{"kind", "macro_law"}, {"material", material}};
+    return run(j);
+  };
+  const RunResult law = beat(false), fe2 = beat(true);
+  ASSERT_TRUE(law.converged) << law.error;
+  ASSERT_TRUE(fe2.converged) << fe2.error;
+  ASSERT_EQ(law.history.size(), fe2.history.size());
+  double dV = 0.0, dp = 0.0, dflux = 0.0, V = 0.0, p = 0.0, flux = 0.0;
+  bool ejected = false;
+  for (size_t k = 0; k < law.history.size(); ++k) {
+    const StepRecord &a = law.history[k], &b = fe2.history[k];
+    ASSERT_EQ(a.circulation.phase[0], b.circulation.phase[0]) << "t = " << a.time;
+    ejected = ejected || a.circulation.phase[0] == "ejection";
+    V = std::max(V, a.cavity_volumes[0]), p = std::max(p, a.cavity_pressures[0]);
+    flux = std::max(flux, std::abs(observable(a, "flux:aortic")));
+    dV = std::max(dV, std::abs(a.cavity_volumes[0] - b.cavity_volumes[0]));
+    dp = std::max(dp, std::abs(a.cavity_pressures[0] - b.cavity_pressures[0]));
+    dflux = std::max(dflux, std::abs(observable(a, "flux:aortic") - observable(b, "flux:aortic")));
+  }
+  std::printf("macro law against homogeneous units, with blood: |ΔV|/V %.1e, |Δp_c|/p_c %.1e, |ΔQ_aortic|/Q %.1e "
+              "(peak %.2f kPa, %.0f mm³/s)\n",
+              dV / V, dp / p, dflux / flux, 1e-3 * p, flux);
+  EXPECT_TRUE(ejected);
+  EXPECT_LT(dV / V, 1e-8);
+  EXPECT_LT(dp / p, 1e-8);
+  EXPECT_LT(dflux / flux, 1e-8);
 }
 
 }  // namespace
