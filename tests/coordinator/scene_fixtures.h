@@ -33,6 +33,15 @@ inline json homogeneous_unit(const json& material) {
           {"solver", {{"refresh", "every_iteration"}}}};
 }
 
+/// The model of `material` with a volumetric penalty (so a unit has one): the macro law
+/// itself, or FE² units that are homogeneous in it (whose homogenized law is the law).
+inline json macro_law_or_its_units(json material, bool fe2) {
+  material["volumetric"] = "penalty";
+  material["kappa"] = 1e6;
+  return fe2 ? json{{"kind", "fe2"}, {"unit", homogeneous_unit(material)}}
+             : json{{"kind", "macro_law"}, {"material", material}};
+}
+
 /// A cantilever [0,2]x[0,1]x[0,1], clamped at x = 0, under a follower pressure on top.
 inline json beam(const json& model, int steps = 3, double pressure = 60.0) {
   return {{"mesh", {{"kind", "box"}, {"hi", {2, 1, 1}}, {"divisions", {2, 1, 1}}}},

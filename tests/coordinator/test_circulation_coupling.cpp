@@ -221,11 +221,7 @@ TEST(HardPhysiology, HomogeneousUnitsOfTheMacroLawGiveTheMacroBeat) {
     j["output"] = {{"vtu", false}};
     j["time"] = {{"t_end", 0.4}, {"steps", 10}, {"inflation_steps", 4}};
     j["newton"] = {{"rtol", 1e-11}, {"micro_rtol", 1e-12}, {"max_iterations", 30}};
-    json material = j["models"]["myocardium"]["material"];
-    material["volumetric"] = "penalty";
-    material["kappa"] = 1e6;
-    j["models"]["myocardium"] = fe2 ? json{{"kind", "fe2"}, {"unit", test::homogeneous_unit(material)}}
-                                    : json{{"kind", "macro_law"}, {"material", material}};
+    j["models"]["myocardium"] = test::macro_law_or_its_units(j["models"]["myocardium"]["material"], fe2);
     const RunSpec spec = read_run_spec(j, file.parent_path().string());
     LocalEvaluator points(spec.models, spec.model_of_points());
     Simulation sim(spec, points);

@@ -417,11 +417,7 @@ TEST(FluidTwoWay, HomogeneousUnitsOfTheMacroLawGiveTheMacroBeatWithBlood) {
     j["time"] = {{"t_end", 0.08}, {"steps", 4}, {"inflation_steps", 10}};  // filled in 0.2 s, as the config
     // 1e-10: the blood's round-off floor (1806 unknowns, kPa pressures on mm faces)
     j["newton"] = {{"rtol", 1e-10}, {"micro_rtol", 1e-12}, {"max_iterations", 30}};
-    json material = j["models"]["myocardium"]["material"];
-    material["volumetric"] = "penalty";
-    material["kappa"] = 1e6;
-    j["models"]["myocardium"] = fe2 ? json{{"kind", "fe2"}, {"unit", test::homogeneous_unit(material)}}
-                                    : json{{"kind", "macro_law"}, {"material", material}};
+    j["models"]["myocardium"] = test::macro_law_or_its_units(j["models"]["myocardium"]["material"], fe2);
     return run(j);
   };
   const RunResult law = beat(false), fe2 = beat(true);
