@@ -67,6 +67,10 @@ MacroCost macro_cost(const TraceData& t) {
     c.cpu_total += it.value("macro_cpu_sum", wall);
     c.coordinators = std::max(c.coordinators, it.value("coordinators", 1));
     const MacroSolveKind kind = macro_solve_kind(it);
+    if (kind == MacroSolveKind::unknown) {  // an older trace: no kinds, one median
+      solving.push_back(cpu);
+      continue;
+    }
     Samples& s = kind == MacroSolveKind::factorizing ? f : kind == MacroSolveKind::none ? n : k;
     s.wall.push_back(wall);
     s.cpu.push_back(cpu);
