@@ -222,4 +222,14 @@ void MacroProblem::restore(ByteReader& r) {
   a_ = a_n_;
 }
 
+Eigen::SparseMatrix<double> MacroProblem::tangent() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(values_.size());
+  for (size_t s = 0; s < values_.size(); ++s)
+    entries.emplace_back(system_.rows()[s], system_.cols()[s], values_[s]);
+  Eigen::SparseMatrix<double> K(system_.num_free(), system_.num_free());
+  K.setFromTriplets(entries.begin(), entries.end());
+  return K;
+}
+
 }  // namespace fe2

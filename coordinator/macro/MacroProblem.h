@@ -12,6 +12,8 @@
 #include "coordinator/macro/MacroTerm.h"
 #include "proto/Transport.h"
 
+#include <Eigen/Sparse>
+
 #include <functional>
 #include <memory>
 #include <string>
@@ -75,6 +77,10 @@ class MacroProblem {
   /// t, x and its rates, each term's history (the committed state).
   void save(ByteWriter& w) const;
   void restore(ByteReader& r);
+  /// The last assembled S̄ over the free equations, as this coordinator holds it (the
+  /// whole matrix on one coordinator): for diagnostics and tests (the partitioned
+  /// schemes' iteration matrices are blocks of it).
+  Eigen::SparseMatrix<double> tangent() const;
   /// Drops the kept macro factor (a restart and the run it continues start alike).
   void drop_factor() { solver_.drop_factor(); }
 
