@@ -197,6 +197,7 @@ Simulation::Outcome Simulation::iterate(int step, int it, double t_new, double d
     ScopedWallTimer t(timing.assemble);
     problem_.assemble(t_new, dt, lift);
   }
+  timing.assemble_fluid = problem_.fluid_assembly_seconds();
   const Residual res = converge(t_new);
   for (size_t f = 0; f < res.fields.size(); ++f) rec.residuals[f].values.push_back(res.fields[f]);
   rec.micro_residuals.push_back(res.micro);

@@ -52,6 +52,10 @@ int trace_summary(const std::string& dir, bool as_json) {
   row("factorizing", m.factorizing);
   row("kept factor", m.kept);
   row("converged (no solve)", m.none);
+  if (m.fluid_assembly > 0)
+    fmt::print("  blood           its terms' assembly {:.4g} s = {:.3f} of Macro (coordinator 0; the solve is of wall "
+               "and blood together)\n",
+               m.fluid_assembly, m.macro_wall > 0 ? m.fluid_assembly / m.macro_wall : 0.0);
   return 0;
 }
 

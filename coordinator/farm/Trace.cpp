@@ -46,6 +46,7 @@ void Trace::iteration(const IterationTiming& t) {
   const nlohmann::json j = {{"step", t.step},         {"iteration", t.iteration},
                             {"entire", t.entire},     {"micro_lc", t.micro_lc},
                             {"macro", t.macro},       {"assemble", t.assemble},
+                            {"assemble_fluid", t.assemble_fluid},
                             {"solve", t.solve},       {"comm1", t.comm1},
                             {"macro_cpu_max", t.macro_cpu_max}, {"macro_cpu_sum", t.macro_cpu_sum},
                             {"coordinators", t.coordinators}, {"macro_factorized", t.macro_factorized},

@@ -27,6 +27,7 @@ struct IterationTiming {
   double micro_lc = 0.0;  ///< dispatch to last result: micro work + load imbalance + comm
   double macro = 0.0;     ///< (g) assembly, (i) convergence test and (h) solve
   double assemble = 0.0;  ///< (g) the macro terms
+  double assemble_fluid = 0.0;  ///< of which the blood's (Navier–Stokes, its boundaries, the mesh motion)
   double solve = 0.0;     ///< (h) MUMPS
   /// The macro phase's thread CPU seconds on the busiest coordinator (the critical path
   /// when coordinators share cores) and summed over the coordinator group.

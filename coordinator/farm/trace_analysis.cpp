@@ -61,6 +61,8 @@ MacroCost macro_cost(const TraceData& t) {
   std::vector<double> solving;
   for (const auto& it : t.iterations) {
     const double wall = it.at("macro").get<double>();
+    c.macro_wall += wall;
+    c.fluid_assembly += it.value("assemble_fluid", 0.0);
     c.cpu_recorded = it.contains("macro_cpu_max");
     const double cpu = it.value("macro_cpu_max", wall);
     c.cpu_critical += cpu;
@@ -177,6 +179,8 @@ nlohmann::json to_json(const MacroCost& c) {
           {"cpu_recorded", c.cpu_recorded},
           {"cpu_critical_seconds", c.cpu_critical},
           {"cpu_total_seconds", c.cpu_total},
+          {"fluid_assembly_seconds", c.fluid_assembly},
+          {"fluid_share_of_macro", c.macro_wall > 0 ? c.fluid_assembly / c.macro_wall : 0.0},
           {"factorizing", kind(c.factorizing)},
           {"kept_factor", kind(c.kept)},
           {"no_solve", kind(c.none)}};

@@ -35,6 +35,9 @@ struct MacroCost {
   double cpu_critical = 0;  ///< Σ over iterations of the busiest coordinator's macro CPU
   double cpu_total = 0;     ///< Σ over iterations and coordinators
   bool cpu_recorded = false;
+  /// Σ over iterations of the wall seconds coordinator 0 spent assembling the blood's
+  /// terms (its share of Macro: the fluid's), and of the whole macro phase there.
+  double fluid_assembly = 0, macro_wall = 0;
   /// The cost this trace predicts for an iteration of kind `k` (CPU median; a kind the
   /// trace lacks, or `unknown`, takes the median over its solving iterations).
   double predict(MacroSolveKind k) const;

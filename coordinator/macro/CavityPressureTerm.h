@@ -54,6 +54,7 @@ class CavityPressureTerm final : public MacroTerm {
  public:
   CavityPressureTerm(const RunSpec& spec, const MacroPartition& partition);
   std::string name() const override { return "cavity pressure"; }
+  Physics physics() const override { return Physics::circulation; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
   /// The cavity pressures' scale: the reference volumes (added where the rows are).

@@ -64,6 +64,7 @@ class OpenBoundaryTerm final : public MacroTerm {
   OpenBoundaryTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
                    std::vector<Boundary> boundaries, double density);
   std::string name() const override { return "fluid open boundary"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
   /// flux:<set> = ∫(v − v̂)·n da per boundary (out of the fluid).
@@ -103,6 +104,7 @@ class FluxConstraintTerm final : public MacroTerm {
   FluxConstraintTerm(const TetMesh& mesh, const MacroPartition& partition, const std::vector<int>& regions,
                      std::vector<Boundary> boundaries);
   std::string name() const override { return "fluid flux constraint"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   /// flux:<set> = ∫(v − v̂)·n da and flux_pressure:<set> = λ per boundary.
   void observe(const MacroState& state, std::vector<Observable>& out) const override;
@@ -196,6 +198,7 @@ class MovingWallTerm final : public MacroTerm {
   /// Two-way: the multipliers also act on the wall's displacement (see above).
   static std::unique_ptr<MovingWallTerm> loading_wall(const MacroPartition& partition, std::vector<int> nodes);
   std::string name() const override { return valves_ ? "fluid valve closure" : "fluid moving wall"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   /// 1 per multiplier (the measure is |v − v̂| in velocity units).
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
@@ -228,6 +231,7 @@ class PressureLevelTerm final : public MacroTerm {
  public:
   PressureLevelTerm(const TetMesh& mesh, std::vector<int> elements);
   std::string name() const override { return "fluid pressure level"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   /// The fluid's volume: the measure is the mean pressure.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;

@@ -5,6 +5,7 @@
 #include "coordinator/macro/field_residuals.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace fe2 {
@@ -82,8 +83,14 @@ void MacroProblem::assemble(double t_new, double dt, const Eigen::VectorXd* lift
   assembly_->set_lift(lift);
   const MacroState s = state(t_new, dt);
   std::string why;
+  fluid_assembly_seconds_ = 0.0;
   try {
-    for (auto& term : terms_) term->assemble(s, *assembly_);
+    for (auto& term : terms_) {
+      const auto start = std::chrono::steady_clock::now();
+      term->assemble(s, *assembly_);
+      if (term->physics() == MacroTerm::Physics::fluid)
+        fluid_assembly_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
   } catch (const NumericalError& e) {
     why = e.what();
   }

@@ -55,6 +55,9 @@ class MacroProblem {
   /// (g) every term into S̄ and the residual; `lift` the first iteration's Δx_D or null.
   /// @note Collective.
   void assemble(double t_new, double dt, const Eigen::VectorXd* lift);
+  /// Wall seconds the last assemble() spent in the blood's terms (MacroTerm::Physics::fluid)
+  /// on this coordinator.
+  double fluid_assembly_seconds() const { return fluid_assembly_seconds_; }
   /// (i) each field's residual norm (table order), the same on every coordinator.
   /// @note Collective.
   std::vector<double> residual_norms(double t_new);
@@ -104,6 +107,7 @@ class MacroProblem {
   double dt_n_ = 0.0;                  ///< the last committed step (0: none yet)
   Eigen::VectorXd x_k_;                ///< x before the last update (retract)
   double t_n_ = 0.0;
+  double fluid_assembly_seconds_ = 0.0;
 };
 
 }  // namespace fe2

@@ -80,6 +80,10 @@ class MacroTerm {
  public:
   virtual ~MacroTerm() = default;
   virtual std::string name() const = 0;
+  /// The physics it belongs to: the traces give each one's share of the macro's
+  /// assembly (IterationTiming::assemble_fluid).
+  enum class Physics { wall, fluid, circulation };
+  virtual Physics physics() const { return Physics::wall; }
   /// Looks up its fields and declares its local matrices in the pattern (once, before
   /// the first assembly).
   virtual void declare(MacroSystem& system) = 0;

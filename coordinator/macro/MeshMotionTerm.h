@@ -23,6 +23,7 @@ class MeshMotionTerm final : public MacroTerm {
  public:
   MeshMotionTerm(const TetMesh& mesh, std::vector<int> elements, MeshMotionKind kind, double stiffening);
   std::string name() const override { return "mesh motion"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
   /// fluid_mesh_worst_shape: the worst current η over the fluid's elements (1 for a

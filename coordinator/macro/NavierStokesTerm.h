@@ -25,6 +25,7 @@ class NavierStokesTerm final : public MacroTerm {
   NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, NewtonianFluid fluid,
                    Vec3 body_force, double residual_pressure, bool shape_derivatives = false);
   std::string name() const override { return "navier-stokes"; }
+  Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   /// ∫ N_p dV per pressure DOF: the continuity residual's scale (a mean |div v|); and
   /// P_ref ∫ |∂N_a/∂x_i| dV per velocity DOF: the momentum residual's floor.
