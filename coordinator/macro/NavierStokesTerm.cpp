@@ -129,23 +129,30 @@ Eigen::MatrixXd NavierStokesTerm::with_shape_derivatives(const FluidElementState
 }
 
 void NavierStokesTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
-  // On the current geometry: V = ∫dV, E_k = ½ρ∫|v|² dV.
+  // On the current geometry: V = ∫dV, E_k = ½ρ∫|v|² dV, and the viscous dissipation
+  // rate D = ∫2μ ε(v):ε(v) dV (the power the blood's viscosity turns into heat; what it
+  // leaves out of the energy balance, SUPG/LSIC and BDF's own damping, is the scheme's).
   const int order = mesh_.order();
   FluidElementState s;
   Eigen::VectorXd N;
   Eigen::Matrix<double, 3, Eigen::Dynamic> dN;
-  double volume = 0.0, kinetic = 0.0;
+  double volume = 0.0, kinetic = 0.0, dissipation = 0.0;
   for (size_t k = 0; k < elements_.size(); ++k) {
     gather_element(k, state, s);
     for (const auto& q : tet_rule(2 * order + 2 * (order - 1))) {
       tet_shape(order, q.bary, N, dN);
-      const double dV = q.weight * (s.x * dN.transpose()).determinant();
+      const Mat3 J = s.x * dN.transpose();
+      const double dV = q.weight * J.determinant();
+      const Mat3 grad_v = s.v * (J.transpose().inverse() * dN).transpose();  // ∂v/∂x
+      const Mat3 eps = 0.5 * (grad_v + grad_v.transpose());
       volume += dV;
       kinetic += 0.5 * fluid_.density * dV * (s.v * N).squaredNorm();
+      dissipation += 2.0 * fluid_.viscosity * dV * eps.squaredNorm();
     }
   }
   out.push_back({"fluid_volume", volume});
   out.push_back({"fluid_kinetic_energy", kinetic});
+  out.push_back({"fluid_dissipation_rate", dissipation});
 }
 
 }  // namespace fe2

@@ -31,7 +31,7 @@ class NavierStokesTerm final : public MacroTerm {
   /// P_ref ∫ |∂N_a/∂x_i| dV per velocity DOF: the momentum residual's floor.
   void add_residual_scale(const Field& field, Eigen::VectorXd& scale) const override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
-  /// fluid_volume (current) and fluid_kinetic_energy ½ρ∫|v|².
+  /// fluid_volume (current), fluid_kinetic_energy ½ρ∫|v|² and fluid_dissipation_rate ∫2μ ε:ε.
   void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:

@@ -5,6 +5,7 @@
 // follower pressure P on its endocardium (the lumped load the cavities have without
 // blood). And Newton, with the coupling's tangent, keeps its convergence rate.
 #include "common/circulation/beat_summary.h"
+#include "common/materials/NeoHookean.h"
 #include "common/mesh/cavity_volume.h"
 #include "tests/coordinator/fluid_fixtures.h"
 #include "tests/coordinator/scene_fixtures.h"
@@ -73,6 +74,17 @@ json inflated_lv(bool blood, double P, int steps) {
   return j;
 }
 
+/// The inflated LV with blood, coarse (4 × 2 × 1 wall cells, one layer of blood) and the
+/// aortic ring alone open: the small scene of the tangent, added-mass and energy tests.
+json small_inflated_lv(double P, int steps) {
+  json j = inflated_lv(true, P, steps);
+  j["mesh"]["divisions"] = {4, 2, 1};
+  j["mesh"]["cavity"] = {{"layers", 1}, {"rings", {{"aortic", {{"center", {10, 0}}, {"radius", 8}}}}}};
+  j["fluid"]["boundaries"][2] = {{"kind", "no_slip"}, {"set", "base_cap"}};
+  j["fluid"]["mesh_motion"]["boundaries"][2] = {{"set", "base_cap"}, {"follow", "fixed"}};
+  return j;
+}
+
 using test::observable;
 RunResult run(const json& j) { return test::run_spec(j); }
 
@@ -106,12 +118,8 @@ TEST(FluidTwoWay, BloodAtRestLoadsTheWallAsItsPressure) {
 TEST(FluidTwoWay, CoupledTangentMatchesFiniteDifferences) {
   for (const char* element : {"taylor_hood", "taylor_hood_supg"}) {
     SCOPED_TRACE(element);
-    json j = inflated_lv(true, 250.0, 1);
-    j["mesh"]["divisions"] = {4, 2, 1};
-    j["mesh"]["cavity"] = {{"layers", 1}, {"rings", {{"aortic", {{"center", {10, 0}}, {"radius", 8}}}}}};
+    json j = small_inflated_lv(250.0, 1);
     j["fluid"]["element"] = element;
-    j["fluid"]["boundaries"][2] = {{"kind", "no_slip"}, {"set", "base_cap"}};
-    j["fluid"]["mesh_motion"]["boundaries"][2] = {{"set", "base_cap"}, {"follow", "fixed"}};
     const RunSpec spec = read_run_spec(j, "");
     MacroSystem system = make_macro_system(spec);  // with the fluid's fields (spec.fluid)
     ASSERT_TRUE(spec.fluid->shape_derivatives);
@@ -504,11 +512,7 @@ TEST(FluidTwoWay, ThePartitionedSchemeDivergesWhereTheMonolithicConverges) {
   // aortic ring held at 250 Pa: four steps of Δt from rest (myocardium is about as dense
   // as blood, ρ_s/ρ_f ≈ 1: the physiological case).
   const auto radius = [](double density_ratio, double dt) {
-    json j = inflated_lv(true, 250.0, 4);
-    j["mesh"]["divisions"] = {4, 2, 1};
-    j["mesh"]["cavity"] = {{"layers", 1}, {"rings", {{"aortic", {{"center", {10, 0}}, {"radius", 8}}}}}};
-    j["fluid"]["boundaries"][2] = {{"kind", "no_slip"}, {"set", "base_cap"}};
-    j["fluid"]["mesh_motion"]["boundaries"][2] = {{"set", "base_cap"}, {"follow", "fixed"}};
+    json j = small_inflated_lv(250.0, 4);
     const double rho_f = j["fluid"]["density"];
     j["time"] = {{"t_end", 4 * dt}, {"steps", 4}, {"scheme", "newmark"}, {"density", density_ratio * rho_f}};
     const RunSpec spec = read_run_spec(j, "");
@@ -538,6 +542,64 @@ TEST(FluidTwoWay, ThePartitionedSchemeDivergesWhereTheMonolithicConverges) {
   // Where the masses dominate, ρ(G) is the added mass over the wall's: it scales as
   // ρ_f/ρ_s (measured 9.50 and 0.102: the stiffness helps the heavy wall a little more).
   EXPECT_NEAR(100.0 * heavy / equal, 1.0, 0.2);
+}
+
+// The coupled system's energy balance. The blood is let into the soft LV through its
+// aortic ring, whose pressure P rises linearly to 250 Pa in T; the work the ring's
+// pressure does on the blood, W = ∫P dV (V the cavity's volume, the blood's: it is
+// incompressible), goes into the wall's strain energy Ψ (quasi-static: no kinetic
+// energy), the blood's kinetic energy E_k and its viscous dissipation ∫D dt,
+// D = ∫2μ ε:ε dV. What is left, W − Ψ − E_k − ∫D dt, is the schemes' (BDF1's damping of
+// the blood, SUPG/LSIC, the backflow term, the trapezoidal sums here): it must vanish
+// to first order in Δt. The wall's Ψ at T from its points' displacement gradients.
+struct EnergyBudget {
+  double work = 0, stored = 0, kinetic = 0, dissipated = 0;
+  double defect() const { return work - stored - kinetic - dissipated; }
+};
+
+EnergyBudget inflation_energy(double T, int steps) {
+  const double P = 250.0, E = 30000.0, nu = 0.45;
+  json j = small_inflated_lv(P, steps);
+  j["formulation"] = {{"kind", "displacement"}};  // Ψ is the material's energy alone
+  j["fluid"]["boundaries"][3]["ramp"] = "linear";
+  j["time"] = {{"t_end", T}, {"steps", steps}};
+  const RunSpec spec = read_run_spec(j, "");
+  EXPECT_EQ(j["models"]["myocardium"]["material"]["E"].get<double>(), E);
+  LocalEvaluator points(spec.models, spec.model_of_points());
+  Simulation sim(spec, points);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.converged) << r.error;
+  EnergyBudget b;
+  const TetMesh& m = spec.mesh;
+  double V = cavity_volume(m, "endo", Eigen::VectorXd::Zero(3 * m.num_nodes())).volume, D = 0.0, t = 0.0;
+  for (const StepRecord& h : r.history) {
+    const double dt = h.time - t, P0 = P * t / T, P1 = P * h.time / T, D1 = observable(h, "fluid_dissipation_rate");
+    b.work += 0.5 * (P0 + P1) * (h.cavity_volumes[0] - V);  // trapezoidal: exact for the quasi-static wall
+    b.dissipated += 0.5 * (D + D1) * dt;
+    V = h.cavity_volumes[0], D = D1, t = h.time;
+  }
+  b.kinetic = observable(r.history.back(), "fluid_kinetic_energy");
+  const NeoHookean law(E, nu);
+  for (int k = 0; k < sim.points().size(); ++k)
+    b.stored += sim.points()[k].volume * law.energy(sim.displacement_gradient(k));
+  std::printf("T = %.3f s, %2d steps: W %.6g, Ψ %.6g, E_k %.4g, ∫D dt %.4g (Pa·mm³): defect %.3e of W\n", T, steps,
+              b.work, b.stored, b.kinetic, b.dissipated, b.defect() / b.work);
+  return b;
+}
+
+// Measured (T = 0.05 s, the blood carrying a third of the work): defect +3.4 %, +1.2 %,
+// −0.4 %, −1.4 % of W at 8, 16, 32, 64 steps. It does not go to zero: about 1–2 % of W is
+// not accounted for yet; the kinetic energy the inflow carries through the ring
+// (½ρ|v|² v·n, less the backflow term's share) is the likely remainder (docs/fluid.md).
+// The bounds below hold the balance to a twentieth of the blood's share: leaving out its
+// kinetic energy, or the wall storing what the blood's traction did not do, breaks them.
+TEST(FluidTwoWay, TheRingsWorkIsStoredByTheWallAndCarriedOrDissipatedByTheBlood) {
+  const double T = 0.05;  // fast: the blood's kinetic energy is a third of the work
+  for (int steps : {16, 32}) {
+    const EnergyBudget b = inflation_energy(T, steps);
+    EXPECT_GT(b.kinetic + b.dissipated, 0.25 * b.work) << steps << " steps: the blood's share is too small to test";
+    EXPECT_LT(std::abs(b.defect()), 0.02 * b.work) << steps << " steps";
+  }
 }
 
 }  // namespace
