@@ -59,4 +59,19 @@ void backflow_face(int order, double density, double beta, const Eigen::Matrix3X
   }
 }
 
+FaceEnergyFlux face_energy_flux(int order, double density, double beta, const Eigen::Matrix3Xd& x,
+                                const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& w) {
+  FaceEnergyFlux e;
+  Eigen::VectorXd N;
+  Eigen::Matrix<double, 2, Eigen::Dynamic> dN;
+  for (const auto& q : triangle_rule(3 * order)) {
+    triangle_shape(order, q.bary, N, dN);
+    const Vec3 vq = v * N;
+    const double cn = (vq - w * N).dot(area_vector(x, dN, q.weight));  // (c·n) da
+    e.kinetic += 0.5 * density * vq.squaredNorm() * cn;
+    if (cn < 0.0) e.backflow -= beta * density * cn * vq.squaredNorm();
+  }
+  return e;
+}
+
 }  // namespace fe2

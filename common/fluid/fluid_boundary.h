@@ -26,4 +26,13 @@ Eigen::VectorXd face_shape_integrals(int order, const Eigen::Matrix3Xd& x);
 void backflow_face(int order, double density, double beta, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
                    const Eigen::Matrix3Xd& w, Eigen::VectorXd& R, Eigen::MatrixXd* K);
 
+/// The energy an open face lets through by convection: the kinetic-energy flux
+/// ∫½ρ|v|²(c·n) da (c = v − v̂, positive out of the fluid) and the power the backflow
+/// term (β) takes, −βρ∫(c·n)₋|v|² da ≥ 0 (its own quadrature, so the two balance it).
+struct FaceEnergyFlux {
+  double kinetic = 0.0, backflow = 0.0;
+};
+FaceEnergyFlux face_energy_flux(int order, double density, double beta, const Eigen::Matrix3Xd& x,
+                                const Eigen::Matrix3Xd& v, const Eigen::Matrix3Xd& w);
+
 }  // namespace fe2

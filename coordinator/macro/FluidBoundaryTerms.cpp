@@ -107,7 +107,23 @@ void OpenBoundaryTerm::assemble(const MacroState& state, MacroAssembly& out) {
 
 void OpenBoundaryTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
   const std::vector<double> Q = face_fluxes(mesh_, *v_, d_, faces_, boundaries_.size(), state);
-  for (size_t b = 0; b < boundaries_.size(); ++b) out.push_back({"flux:" + boundaries_[b].set, Q[b]});
+  std::vector<FaceEnergyFlux> energy(boundaries_.size());
+  Eigen::Matrix3Xd x, w, v;
+  for (size_t k = 0; k < faces_.size(); ++k) {
+    const FluidFace& f = faces_[k];
+    fluid_face_geometry(mesh_, d_, f.nodes, state, x, w);
+    v.resize(3, static_cast<Eigen::Index>(f.nodes.size()));
+    for (size_t a = 0; a < f.nodes.size(); ++a)
+      v.col(static_cast<Eigen::Index>(a)) = state.x.segment<3>(v_->node_dof(f.nodes[a]));
+    const FaceEnergyFlux e = face_energy_flux(mesh_.order(), density_, boundaries_[f.boundary].backflow, x, v, w);
+    energy[f.boundary].kinetic += e.kinetic;
+    energy[f.boundary].backflow += e.backflow;
+  }
+  for (size_t b = 0; b < boundaries_.size(); ++b) {
+    out.push_back({"flux:" + boundaries_[b].set, Q[b]});
+    out.push_back({"kinetic_flux:" + boundaries_[b].set, energy[b].kinetic});
+    out.push_back({"backflow_power:" + boundaries_[b].set, energy[b].backflow});
+  }
 }
 
 // --- flux constraints

@@ -67,7 +67,9 @@ class OpenBoundaryTerm final : public MacroTerm {
   Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
-  /// flux:<set> = ∫(v − v̂)·n da per boundary (out of the fluid).
+  /// flux:<set> = ∫(v − v̂)·n da per boundary (out of the fluid); kinetic_flux:<set> and
+  /// backflow_power:<set>, the energy it lets out by convection and what its backflow
+  /// term dissipates (face_energy_flux).
   void observe(const MacroState& state, std::vector<Observable>& out) const override;
 
  private:

@@ -545,16 +545,18 @@ TEST(FluidTwoWay, ThePartitionedSchemeDivergesWhereTheMonolithicConverges) {
 }
 
 // The coupled system's energy balance. The blood is let into the soft LV through its
-// aortic ring, whose pressure P rises linearly to 250 Pa in T; the work the ring's
-// pressure does on the blood, W = ∫P dV (V the cavity's volume, the blood's: it is
-// incompressible), goes into the wall's strain energy Ψ (quasi-static: no kinetic
-// energy), the blood's kinetic energy E_k and its viscous dissipation ∫D dt,
-// D = ∫2μ ε:ε dV. What is left, W − Ψ − E_k − ∫D dt, is the schemes' (BDF1's damping of
-// the blood, SUPG/LSIC, the backflow term, the trapezoidal sums here): it must vanish
-// to first order in Δt. The wall's Ψ at T from its points' displacement gradients.
+// aortic ring, whose pressure P rises linearly to 250 Pa in T. What enters through the
+// ring, the pressure's work ∫P dV (V the cavity's volume, the blood's: it is
+// incompressible) and the kinetic energy the inflow carries in (−∫½ρ|v|² c·n da dt),
+// goes into the wall's strain energy Ψ (quasi-static: no kinetic energy), the blood's
+// kinetic energy E_k, its viscous dissipation ∫D dt (D = ∫2μ ε:ε dV) and what the ring's
+// backflow term takes (∫βρ|c·n|₋|v|² da dt). What is left is the schemes' (BDF1's
+// damping of the blood, the trapezoidal sums here): it must vanish as Δt → 0. Ψ at T from
+// the wall points' displacement gradients.
 struct EnergyBudget {
-  double work = 0, stored = 0, kinetic = 0, dissipated = 0;
-  double defect() const { return work - stored - kinetic - dissipated; }
+  double work = 0, convected = 0, stored = 0, kinetic = 0, dissipated = 0, backflow = 0;
+  double in() const { return work + convected; }
+  double defect() const { return in() - stored - kinetic - dissipated - backflow; }
 };
 
 EnergyBudget inflation_energy(double T, int steps) {
@@ -571,35 +573,41 @@ EnergyBudget inflation_energy(double T, int steps) {
   EXPECT_TRUE(r.converged) << r.error;
   EnergyBudget b;
   const TetMesh& m = spec.mesh;
-  double V = cavity_volume(m, "endo", Eigen::VectorXd::Zero(3 * m.num_nodes())).volume, D = 0.0, t = 0.0;
+  double V = cavity_volume(m, "endo", Eigen::VectorXd::Zero(3 * m.num_nodes())).volume, t = 0.0;
+  double D = 0.0, K = 0.0, B = 0.0;  // rates at the step's start: the blood at rest
   for (const StepRecord& h : r.history) {
-    const double dt = h.time - t, P0 = P * t / T, P1 = P * h.time / T, D1 = observable(h, "fluid_dissipation_rate");
+    const double dt = h.time - t, P0 = P * t / T, P1 = P * h.time / T;
+    const double D1 = observable(h, "fluid_dissipation_rate"), K1 = observable(h, "kinetic_flux:aortic"),
+                 B1 = observable(h, "backflow_power:aortic");
     b.work += 0.5 * (P0 + P1) * (h.cavity_volumes[0] - V);  // trapezoidal: exact for the quasi-static wall
     b.dissipated += 0.5 * (D + D1) * dt;
-    V = h.cavity_volumes[0], D = D1, t = h.time;
+    b.convected -= 0.5 * (K + K1) * dt;
+    b.backflow += 0.5 * (B + B1) * dt;
+    V = h.cavity_volumes[0], D = D1, K = K1, B = B1, t = h.time;
   }
   b.kinetic = observable(r.history.back(), "fluid_kinetic_energy");
   const NeoHookean law(E, nu);
   for (int k = 0; k < sim.points().size(); ++k)
     b.stored += sim.points()[k].volume * law.energy(sim.displacement_gradient(k));
-  std::printf("T = %.3f s, %2d steps: W %.6g, Ψ %.6g, E_k %.4g, ∫D dt %.4g (Pa·mm³): defect %.3e of W\n", T, steps,
-              b.work, b.stored, b.kinetic, b.dissipated, b.defect() / b.work);
+  std::printf("T = %.3f s, %2d steps (Pa·mm³): ∫P dV %.6g + convected %.4g = Ψ %.6g + E_k %.4g + ∫D dt %.4g + "
+              "backflow %.4g; defect %.3e of what came in\n",
+              T, steps, b.work, b.convected, b.stored, b.kinetic, b.dissipated, b.backflow, b.defect() / b.in());
   return b;
 }
 
-// Measured (T = 0.05 s, the blood carrying a third of the work): defect +3.4 %, +1.2 %,
-// −0.4 %, −1.4 % of W at 8, 16, 32, 64 steps. It does not go to zero: about 1–2 % of W is
-// not accounted for yet; the kinetic energy the inflow carries through the ring
-// (½ρ|v|² v·n, less the backflow term's share) is the likely remainder (docs/fluid.md).
-// The bounds below hold the balance to a twentieth of the blood's share: leaving out its
-// kinetic energy, or the wall storing what the blood's traction did not do, breaks them.
+// Measured: 6.2, 4.6, 3.3, 2.6 % of what came in at 8, 16, 32, 64 steps, the blood
+// carrying more than a third of it. The remainder shrinks with the step (BDF1's damping)
+// but toward about 2 %, not zero: the discrete convective term does not give back the
+// face's ½ρ|v|² c·n exactly on the moving mesh (without that flux in the sum the remainder
+// tends to −2.4 %). The bounds hold it below a tenth of the blood's share and shrinking;
+// the wall feeling 90 % of the blood's traction breaks them (remainder ≈ 10 %).
 TEST(FluidTwoWay, TheRingsWorkIsStoredByTheWallAndCarriedOrDissipatedByTheBlood) {
   const double T = 0.05;  // fast: the blood's kinetic energy is a third of the work
-  for (int steps : {16, 32}) {
-    const EnergyBudget b = inflation_energy(T, steps);
-    EXPECT_GT(b.kinetic + b.dissipated, 0.25 * b.work) << steps << " steps: the blood's share is too small to test";
-    EXPECT_LT(std::abs(b.defect()), 0.02 * b.work) << steps << " steps";
-  }
+  const EnergyBudget a = inflation_energy(T, 16), b = inflation_energy(T, 32), c = inflation_energy(T, 64);
+  EXPECT_GT(c.kinetic + c.dissipated, 0.3 * c.in()) << "the blood's share is too small to test";
+  EXPECT_LT(std::abs(c.defect()), 0.035 * c.in());
+  EXPECT_LT(std::abs(b.defect()), std::abs(a.defect()));
+  EXPECT_LT(std::abs(c.defect()), std::abs(b.defect()));
 }
 
 }  // namespace
