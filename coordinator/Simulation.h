@@ -133,9 +133,9 @@ class Simulation {
   const MacroSystem& system() const { return problem_.system(); }
   /// The fill-reducing ordering MUMPS chose for S̄ ("" before the first solve).
   const std::string& macro_ordering() const { return problem_.solver().ordering(); }
-  /// Factorizations and kept-factor solves of the macro system so far.
   /// The last assembled macro tangent (MacroProblem::tangent).
   Eigen::SparseMatrix<double> macro_tangent() const { return problem_.tangent(); }
+  /// Factorizations and kept-factor solves of the macro system so far.
   const MacroSolver::Stats& macro_solver_stats() const { return problem_.solver().stats(); }
   const MacroPoints& points() const { return coupling_.points(); }
   /// Every DOF, field by field (system().fields()).

@@ -22,7 +22,8 @@ import numpy as np
 
 
 def arrivals(summary, reference, prefix, level):
-    names = sorted(n for n in summary["probes"] if n.startswith(prefix))
+    # Along the tube from the inlet: by the probes' reference z, not their names.
+    names = sorted((n for n in summary["probes"] if n.startswith(prefix)), key=lambda n: reference[n][2])
     if len(names) < 2:
         sys.exit(f"wave_front.py: {len(names)} probe(s) named {prefix}*: expected at least two along the tube")
     history = summary["history"]
@@ -97,6 +98,9 @@ def main():
         speed = float(np.polyfit(ts, zs, 1)[0])
         print(f"front speed {speed / 1e3:.3f} m/s (least squares over {len(reached)} probes)")
     positions = front_positions(z, height, threshold)
+    print("front position per step:")
+    for tk, p in zip(t[1:], positions[1:]):
+        print(f"  t = {1e3 * tk:8.3f} ms  z = {'-' if p is None else f'{p:.2f} mm'}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"threshold": threshold, "arrivals": dict(zip(names, arrive)), "speed": speed,

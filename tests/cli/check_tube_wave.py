@@ -53,6 +53,7 @@ def main():
     else:
         if any(t1 <= t0 for t0, t1 in zip(arrive, arrive[1:])):
             failures.append(f"arrivals out of order along the tube: {arrive}")
+    if not failures:
         n = len(z)
         zm, tm = sum(z) / n, sum(arrive) / n
         speed = sum((zi - zm) * (ti - tm) for zi, ti in zip(z, arrive)) / sum((ti - tm) ** 2 for ti in arrive)
