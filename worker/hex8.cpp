@@ -14,8 +14,13 @@ constexpr int kSign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
 HexGeometry hex_geometry(const HexMesh& mesh, int e) {
   HexGeometry g;
   const double gp = 1.0 / std::sqrt(3.0);
+  // Relative to the first node: J = Σ X_a ⊗ ∇_ξN_a does not depend on where the element
+  // is (Σ ∇_ξN_a = 0), and without the cancellation of absolute coordinates its rounding
+  // does not either, so equal shapes give equal bits (MicroModel keeps one geometry per
+  // distinct shape) whatever the compiler contracts into FMAs.
   Eigen::Matrix<double, 8, 3> X;
-  for (int a = 0; a < 8; ++a) X.row(a) = mesh.nodes[mesh.hexes[e][a]].transpose();
+  const Vec3 origin = mesh.nodes[mesh.hexes[e][0]];
+  for (int a = 0; a < 8; ++a) X.row(a) = (mesh.nodes[mesh.hexes[e][a]] - origin).transpose();
   for (int q = 0; q < 8; ++q) {
     const double xi[3] = {kSign[q][0] * gp, kSign[q][1] * gp, kSign[q][2] * gp};
     // dN/dξ (8x3) of N_a = ⅛ Π_d (1 + s_ad ξ_d)
