@@ -107,8 +107,9 @@ struct WorkerStats {
   int32_t units_held = 0, jobs = 0;
   int32_t migrations_in = 0, migrations_out = 0;
   double t_begin = 0.0, t_end = 0.0;   ///< wall clock of the micro phase on this worker
-  double busy_cpu = 0.0;               ///< CPU seconds in unit jobs
-  double busy_wall = 0.0;
+  int32_t threads = 1;                 ///< threads running jobs on this rank (farm.threads_per_rank)
+  double busy_cpu = 0.0;               ///< CPU seconds in unit jobs, summed over the threads
+  double busy_wall = 0.0;              ///< wall seconds in unit jobs, summed over the threads
   double wait_wall = 0.0;              ///< blocked waiting for batches (comm1 as seen here)
   int64_t bytes_sent = 0, bytes_received = 0;
   void pack(Bytes& out) const;

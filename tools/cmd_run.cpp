@@ -169,6 +169,29 @@ void check_run_memory(const RunSpec& spec, const FarmLayout& layout, const std::
   check_unit_memory(spec.models, units, memory_limit(limit), spec.farm.factor_memory_budget);
 }
 
+/// farm.threads_per_rank > 1 needs MPI to allow helper threads beside the one that
+/// talks MPI, and units whose jobs never call MPI themselves (MUMPS factors do).
+void check_threads_per_rank(const RunSpec& spec) {
+  const int threads = spec.farm.threads_per_rank;
+  if (threads <= 1) return;
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Query_thread(&provided);
+  if (provided < MPI_THREAD_FUNNELED)
+    throw InputError(fmt::format("farm.threads_per_rank = {}: this MPI library gives no thread support "
+                                 "beyond MPI_THREAD_SINGLE; expected 1, or an MPI with MPI_THREAD_FUNNELED",
+                                 threads));
+  for (const auto& m : spec.models)
+    if (m.plan && m.plan->may_run_mumps())
+      throw InputError(fmt::format(
+          "farm.threads_per_rank = {}: model '{}' factors in {} precision with MUMPS ({}/solver: "
+          "single_factor '{}', factorization '{}'), and MUMPS calls MPI, which only a rank's main "
+          "thread may; expected farm.threads_per_rank 1, or solver.factorization \"cholesky\" with "
+          "single_factor \"supernodal\" (or precision \"double\")",
+          threads, m.name, m.plan->options.half_storage ? "half" : "single", m.plan->path,
+          m.plan->options.single_factor_mumps ? "mumps" : "supernodal",
+          m.plan->options.factorization == MicroSolverOptions::Factorization::lu ? "lu" : "auto"));
+}
+
 std::string format_duration(double s) {
   if (s < 120) return fmt::format("{:.1f} s", s);
   if (s < 7200) return fmt::format("{:.1f} min", s / 60);
@@ -249,7 +272,13 @@ int run(const RunOptions& o) {
     // spec.json in the output is the spec that ran (farm-sim replays its farm section).
     if (!o.policy.empty()) spec.raw["farm"]["policy"] = o.policy;
     if (o.coordinators > 0) spec.raw["farm"]["coordinators"] = o.coordinators;
+    if (o.threads_per_rank > 0) {
+      spec.farm.threads_per_rank = o.threads_per_rank;
+      spec.raw["farm"]["threads_per_rank"] = o.threads_per_rank;
+    }
     layout = FarmLayout::make(spec, world.size(), o.coordinators);
+    check_threads_per_rank(spec);
+    if (spec.farm.threads_per_rank > 1) set_blas_threads(1);
     check_run_memory(spec, layout, o.memory_limit);
     UnitStore::fault_from_env();  // a malformed test hook is bad input on every rank
     // Only ranks that hold units build unit models (a coordinator-only rank never does).
@@ -278,7 +307,8 @@ int run(const RunOptions& o) {
           store->create(static_cast<int>(u));
     }
     if (!coordinator) {
-      run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch);
+      run_worker_loop(transport, *store, layout.coordinator_of_unit, spec.farm.batch,
+                      spec.farm.threads_per_rank);
       return 0;
     }
     std::unique_ptr<RunOutput> output;

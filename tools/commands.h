@@ -14,6 +14,7 @@ struct RunOptions {
   std::string spec;
   std::string out;
   int coordinators = 0;  ///< 0: from the spec
+  int threads_per_rank = 0;  ///< 0: from the spec
   std::string policy;    ///< empty: from the spec
   std::string memory_limit;  ///< "8G", "500M", bytes; empty: the available memory
   bool overwrite = false;  ///< replace an earlier run in `out` (else refuse, exit 2)

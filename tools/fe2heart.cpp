@@ -11,7 +11,10 @@
 int main(int argc, char** argv) {
   // Before MPI_Init: a stop request during a run's start-up must not kill a rank.
   fe2::cli::catch_stop_signals();
-  MPI_Init(&argc, &argv);
+  // Funneled: only a rank's main thread calls MPI; farm.threads_per_rank's helper
+  // threads only compute (worker/JobPool.h).
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   CLI::App app{"fe2heart: a multi-scale FE² heart simulator (macro tetrahedra driven by "
                "periodic micro units of cardiac cells)"};
   app.require_subcommand(1);
@@ -25,6 +28,9 @@ int main(int argc, char** argv) {
                                           "VTU/PVD fields");
   c_run->add_option("spec", run.spec, "run spec (JSON)")->required();
   c_run->add_option("--out", run.out, "output folder")->required();
+  c_run->add_option("--threads-per-rank", run.threads_per_rank,
+                    "threads that run a rank's unit jobs (overrides farm.threads_per_rank)")
+      ->check(CLI::Range(1, 256));
   c_run->add_option("--coordinators", run.coordinators,
                     "coordinator ranks (overrides farm.coordinators in the spec)")
       ->check(CLI::Range(1, 1000000));

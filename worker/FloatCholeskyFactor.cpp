@@ -4,6 +4,7 @@
 #include "worker/binary16_columns.h"
 #include "worker/cholmod_factor_io.h"
 #include "worker/large_pages.h"
+#include "worker/ordering_lock.h"
 
 #include <suitesparse/cholmod.h>
 
@@ -183,7 +184,10 @@ void FloatCholeskyFactor::analyse(const SparseMatrix& K) {
   nnz_K_ = K.nonZeros();
   cholmod_sparse A;
   cholmod_upper_view(K, A);
-  L_ = cholmod_analyze(&A, &c_);
+  {
+    const std::lock_guard<std::mutex> lock(ordering_mutex());
+    L_ = cholmod_analyze(&A, &c_);
+  }
   if (!L_ || c_.status < CHOLMOD_OK)
     throw NumericalError(fmt::format("CHOLMOD cholmod_analyze failed with status {}", c_.status));
   FE2_CHECK(L_->is_super, "CHOLMOD returned a simplicial analysis");

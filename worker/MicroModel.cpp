@@ -157,6 +157,11 @@ MicroModelPlan MicroModel::plan(SpecNode s, const std::string& base_dir) {
   return plan;
 }
 
+bool MicroModelPlan::may_run_mumps() const {
+  return options.single_precision &&
+         (options.single_factor_mumps || options.factorization != MicroSolverOptions::Factorization::cholesky);
+}
+
 int MicroModelPlan::check() const {
   const HexMesh mesh = file_mesh ? *file_mesh : make_cell_mesh(*layout);
   const PeriodicDofMap dofs(mesh, source);

@@ -78,6 +78,10 @@ struct MicroModelPlan {
   /// every region present, is periodic, and every region has a material. Returns the
   /// unit's number of DOF.
   int check() const;
+  /// Whether a unit of this plan may factor with MUMPS (single precision with LU, which
+  /// the automatic policy falls back to on an unsymmetric or indefinite K, or with
+  /// single_factor "mumps"): MUMPS calls MPI, so such units run on a rank's main thread.
+  bool may_run_mumps() const;
   std::shared_ptr<const MicroModel> build() const;
 };
 

@@ -7,8 +7,17 @@
 
 namespace fe2 {
 
-PullClient::PullClient(proto::Transport& transport, UnitStore& store, int batch)
-    : transport_(transport), store_(store), batch_(std::max(1, batch)) {}
+namespace {
+/// The main thread's longest nap while helpers run (seconds): a finished job wakes it
+/// at once; the limit bounds how late a batch that arrives meanwhile is taken.
+constexpr double kHelperNap = 0.001;
+}  // namespace
+
+PullClient::PullClient(proto::Transport& transport, UnitStore& store, int batch, int threads)
+    : transport_(transport),
+      store_(store),
+      batch_(std::max(1, batch) * std::max(1, threads)),
+      pool_([&store](const proto::JobInput& job) { return store.run(job); }, std::max(1, threads)) {}
 
 void PullClient::begin(const std::vector<int>& coordinators, int step, int iteration) {
   sources_.clear();
@@ -18,6 +27,7 @@ void PullClient::begin(const std::vector<int>& coordinators, int step, int itera
     s.rank = c;
     s.outstanding = true;
   }
+  pool_.reset(static_cast<int>(sources_.size()));
   stats_ = proto::WorkerStats{};
   stats_.worker = transport_.rank();
   stats_.step = step;
@@ -31,6 +41,11 @@ void PullClient::begin(const std::vector<int>& coordinators, int step, int itera
 
 void PullClient::close_stats() {
   stats_.t_end = wall_seconds();
+  const JobPool::Account a = pool_.account();
+  stats_.busy_cpu = a.busy_cpu;
+  stats_.busy_wall = a.busy_wall;
+  stats_.jobs = a.jobs;
+  stats_.threads = pool_.threads();
   stats_.bytes_sent = transport_.bytes_sent() - sent0_;
   stats_.bytes_received = transport_.bytes_received() - received0_;
   stats_.migrations_in = migrations_in_;
@@ -44,12 +59,22 @@ bool PullClient::finished() const {
 
 bool PullClient::poll(bool block) {
   if (finished()) return true;
+  // Results the pool's threads finished go with the next pull.
+  for (size_t k = 0; k < sources_.size(); ++k) {
+    const size_t before = sources_[k].results.size();
+    pool_.collect(static_cast<int>(k), sources_[k].results);
+    progress_ += static_cast<long long>(sources_[k].results.size() - before);
+  }
+  if (pool_.threads() > 1) pool_.check_alive(proto::stall_timeout());
   // Ask ahead (with the results so far): while half a batch is still queued, or, once
-  // the coordinator has no more jobs, with the last results when the queue is empty.
+  // the coordinator has no more jobs, with the last results when none is queued or running.
   const size_t ahead = static_cast<size_t>(batch_ / 2);
-  for (Source& s : sources_)
+  for (size_t k = 0; k < sources_.size(); ++k) {
+    Source& s = sources_[k];
+    const int source = static_cast<int>(k);
+    const size_t queued = pool_.queued(source);
     if (!s.done && !s.outstanding &&
-        (s.exhausted ? s.queue.empty() : s.queue.size() <= ahead)) {
+        (s.exhausted ? queued == 0 && pool_.running(source) == 0 : queued <= ahead)) {
       proto::Pull p;
       p.worker = transport_.rank();
       p.max_jobs = batch_;
@@ -61,26 +86,25 @@ bool PullClient::poll(bool block) {
       s.outstanding = true;
       ++progress_;
     }
-  // Run one job, if any is queued.
-  for (Source& s : sources_)
-    if (!s.queue.empty()) {
-      const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
-      s.results.push_back(store_.run(s.queue.front()));
-      s.queue.pop_front();
-      stats_.busy_cpu += thread_cpu_seconds() - c0;
-      stats_.busy_wall += wall_seconds() - w0;
-      ++stats_.jobs;
-      ++progress_;
-      return false;
-    }
-  // Nothing to run: take a batch that has arrived (or wait for one).
+  }
+  // Run one job here, if any is queued.
+  if (pool_.run_one_here()) {
+    ++progress_;
+    return false;
+  }
+  // Nothing to run here: take a batch that has arrived, or wait for one — unless helpers
+  // have jobs, whose results the next pull may wait for: then nap until one finishes.
   Bytes b;
   int from = -1;
   const double w0 = wall_seconds();
   bool got = transport_.try_recv(proto::Type::batch, b, &from);
   if (!got && block) {
-    b = transport_.recv(proto::Type::batch, MPI_ANY_SOURCE, &from, proto::kIndirectPatience);
-    got = true;
+    if (pool_.pending() > 0) {
+      pool_.wait_for_a_result(kHelperNap);
+    } else {
+      b = transport_.recv(proto::Type::batch, MPI_ANY_SOURCE, &from, proto::kIndirectPatience);
+      got = true;
+    }
   }
   stats_.wait_wall += wall_seconds() - w0;
   if (!got) return false;
@@ -91,7 +115,8 @@ bool PullClient::poll(bool block) {
   it->outstanding = false;
   it->done = batch.done;
   it->exhausted = batch.jobs.empty();
-  for (const auto& j : batch.jobs) it->queue.push_back(j);
+  const int source = static_cast<int>(it - sources_.begin());
+  for (const auto& j : batch.jobs) pool_.push(source, j);
   if (finished()) close_stats();
   return finished();
 }

@@ -6,17 +6,21 @@
 // batch arrives while this rank computes (a coordinator that also works answers only
 // between its own jobs). Non-blocking steps, so a rank that also coordinates
 // can serve its own queue in between.
+//
+// With farm.threads_per_rank = T > 1, T helper threads of a JobPool run the jobs while
+// this (main) thread alone talks MPI; a pull then asks for T batches.
 #include "proto/Transport.h"
+#include "worker/JobPool.h"
 #include "worker/UnitStore.h"
 
-#include <deque>
 #include <vector>
 
 namespace fe2 {
 
 class PullClient {
  public:
-  PullClient(proto::Transport& transport, UnitStore& store, int batch);
+  /// `threads` (≥ 1) run this rank's jobs: this thread, or that many helpers.
+  PullClient(proto::Transport& transport, UnitStore& store, int batch, int threads = 1);
 
   /// Starts an iteration: pull from these coordinator ranks.
   void begin(const std::vector<int>& coordinators, int step, int iteration);
@@ -38,12 +42,12 @@ class PullClient {
     bool outstanding = false;
     bool exhausted = false;  ///< the coordinator has no more jobs; results still to send
     bool done = false;
-    std::deque<proto::JobInput> queue;
-    std::vector<proto::JobOutput> results;
+    std::vector<proto::JobOutput> results;  ///< finished, to go with the next pull
   };
   proto::Transport& transport_;
   UnitStore& store_;
-  int batch_;
+  int batch_;  ///< jobs per pull: farm.batch per thread
+  JobPool pool_;
   std::vector<Source> sources_;
   proto::WorkerStats stats_;
   int migrations_in_ = 0, migrations_out_ = 0;

@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "worker/cholmod_factor_io.h"
 #include "worker/large_pages.h"
+#include "worker/ordering_lock.h"
 
 #include <suitesparse/cholmod.h>
 #include <suitesparse/umfpack.h>
@@ -35,6 +36,7 @@ class CholmodFactor final : public SparseFactor {
   void factorize(const SparseMatrix& K) override {
     cholmod_sparse A = view(K);
     if (!L_) {
+      const std::lock_guard<std::mutex> lock(ordering_mutex());
       L_ = cholmod_analyze(&A, &c_);
       check("cholmod_analyze");
     }
@@ -117,6 +119,7 @@ class UmfpackFactor final : public SparseFactor {
     const int n = static_cast<int>(K.rows());
     n_ = n;
     if (!symbolic_) {
+      const std::lock_guard<std::mutex> lock(ordering_mutex());  // UMFPACK may order with METIS
       check(umfpack_di_symbolic(n, n, K.outerIndexPtr(), K.innerIndexPtr(), K.valuePtr(),
                                 &symbolic_, control_, info_),
             "umfpack_di_symbolic");

@@ -5,9 +5,11 @@
 #include "worker/unit_fields.h"
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <string>
+#include <thread>
 
 namespace fe2 {
 
@@ -15,7 +17,7 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
   Fault fault;
   auto bad = [&](const std::string& what) {
     throw InputError(fmt::format("FE2HEART_FAULT='{}': {}; expected "
-                                 "unit=K[,step=S][,kind=numerical|fatal|stall|kill] with integers K, S >= 0",
+                                 "unit=K[,step=S][,kind=numerical|fatal|stall|hang|kill] with integers K, S >= 0",
                                  value, what));
   };
   auto integer = [&](const std::string& key, const std::string& v) {
@@ -45,11 +47,12 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
     } else if (key == "step") {
       fault.step = integer(key, v);
     } else if (key == "kind") {
-      if (v != "numerical" && v != "fatal" && v != "stall" && v != "kill")
+      if (v != "numerical" && v != "fatal" && v != "stall" && v != "hang" && v != "kill")
         bad(fmt::format("unknown kind '{}'; expected {}", v,
-                        known_names("a kind", v, {"numerical", "fatal", "stall", "kill"})));
+                        known_names("a kind", v, {"numerical", "fatal", "stall", "hang", "kill"})));
       fault.fatal = v == "fatal";
       fault.stall = v == "stall";
+      fault.hang = v == "hang";
       fault.kill = v == "kill";
     } else {
       bad(fmt::format("unknown field '{}'; expected {}", key, known_names("a field", key, {"unit", "step", "kind"})));
@@ -82,12 +85,24 @@ void UnitStore::create(int unit) {
 }
 
 double UnitStore::held_factor_bytes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return held_locked();
+}
+
+double UnitStore::held_by(int unit, const PointModel& point) const {
+  // A running unit's factor is being rebuilt or replaced by another thread: not read.
+  const FactorRecord& rec = factor_.at(unit);
+  return rec.running ? rec.running_bytes : point.factor_bytes();
+}
+
+double UnitStore::held_locked() const {
   double held = 0;
-  for (const auto& [_, u] : units_) held += u->factor_bytes();
+  for (const auto& [id, u] : units_) held += held_by(id, *u);
   return held;
 }
 
 UnitStore::FactorCounts UnitStore::factor_counts(int unit) const {
+  std::lock_guard<std::mutex> lock(mutex_);
   auto it = factor_.find(unit);
   FE2_CHECK(it != factor_.end(), "factor counts of unit {} which does not live here", unit);
   return it->second.counts;
@@ -106,20 +121,22 @@ double UnitStore::expected_factor_bytes(int unit) const {
 int UnitStore::make_room(int in_use, double need) {
   double held = 0;
   for (const auto& [id, u] : units_)
-    if (id != in_use) held += u->factor_bytes();
+    if (id != in_use) held += held_by(id, *u);
   int dropped = 0;
   while (held + need > budget_) {
-    // The least recently used other unit that holds a factor (ties: the lowest id).
+    // The least recently used other idle unit that holds a factor (ties: the lowest id).
     int victim = -1;
     long long oldest = 0;
-    for (const auto& [id, u] : units_)
-      if (id != in_use && u->factor_bytes() > 0 && (victim < 0 || factor_[id].last_use < oldest))
-        victim = id, oldest = factor_[id].last_use;
-    if (victim < 0) break;  // the unit in use alone is over budget: it keeps its factor
-    PointModel& v = *units_[victim];
+    for (const auto& [id, u] : units_) {
+      const FactorRecord& rec = factor_.at(id);
+      if (id != in_use && !rec.running && u->factor_bytes() > 0 && (victim < 0 || rec.last_use < oldest))
+        victim = id, oldest = rec.last_use;
+    }
+    if (victim < 0) break;  // the units in use alone are over budget: they keep their factors
+    PointModel& v = *units_.at(victim);
     held -= v.factor_bytes();
     v.drop_factor();
-    FactorRecord& rec = factor_[victim];
+    FactorRecord& rec = factor_.at(victim);
     rec.dropped = true;
     ++rec.counts.evictions;
     ++totals_.evictions;
@@ -133,6 +150,7 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
   FE2_CHECK(it != units_.end(), "job for unit {} which does not live here", job.unit);
   if (job.unit == fault_.unit && job.step >= fault_.step) {
     if (fault_.stall) std::raise(SIGSTOP);  // freeze this rank, as `kill -STOP` does
+    while (fault_.hang) std::this_thread::sleep_for(std::chrono::hours(1));  // this thread only
     if (fault_.kill) std::raise(SIGKILL);   // a node that dies: no handler, no cleanup
     if (fault_.fatal)
       throw Error(fmt::format("unit {}: injected fatal fault (FE2HEART_FAULT)", job.unit));
@@ -143,13 +161,21 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
     return out;
   }
   PointModel& point = *it->second;
-  FactorRecord& rec = factor_.at(job.unit);
-  rec.last_use = ++clock_;
   int evicted = 0;
-  if (budget_ > 0 && point.factor_bytes() == 0)  // this job will build a factor
-    evicted += make_room(job.unit, expected_factor_bytes(job.unit));
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    FactorRecord& rec = factor_.at(job.unit);
+    rec.last_use = ++clock_;
+    const bool builds = point.factor_bytes() == 0;  // this job will build a factor
+    if (budget_ > 0 && builds) evicted += make_room(job.unit, expected_factor_bytes(job.unit));
+    rec.running = true;
+    rec.running_bytes = builds ? expected_factor_bytes(job.unit) : point.factor_bytes();
+  }
   // After the job (kept if it fails): its factor's true size, and what it was rebuilt for.
   auto account = [&](proto::JobOutput& out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    FactorRecord& rec = factor_.at(job.unit);
+    rec.running = false;
     if (budget_ > 0) evicted += make_room(job.unit, point.factor_bytes());
     out.factor_evictions = evicted;
     out.factor_rebuilt = out.factor_rebuilt && rec.dropped;  // not after a move or rollback
@@ -160,18 +186,17 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
     }
     // Only a job that holds a factor can raise the total (a sum over every unit here:
     // O(units) per job, so not for the thousands of macro-law points a store may hold).
-    if (point.factor_bytes() > 0) peak_held_ = std::max(peak_held_, held_factor_bytes());
+    if (point.factor_bytes() > 0) peak_held_ = std::max(peak_held_, held_locked());
   };
   try {
-    proto::JobOutput out = it->second->iterate(job);
+    proto::JobOutput out = point.iterate(job);
     // What the scheduler needs to plan moves, from the point itself (its policy and
     // its state), for each job that can follow this one.
-    const PointModel& p = *it->second;
     out.next_refresh = static_cast<uint8_t>(
-        (p.next_refresh(job.step, job.iteration + 1) ? proto::next_iteration : 0) |
-        (p.next_refresh(job.step, 1) ? proto::restart_step : 0) |
-        (p.next_refresh(job.step + 1, 1) ? proto::next_step : 0));
-    out.state_bytes = p.state_bytes();
+        (point.next_refresh(job.step, job.iteration + 1) ? proto::next_iteration : 0) |
+        (point.next_refresh(job.step, 1) ? proto::restart_step : 0) |
+        (point.next_refresh(job.step + 1, 1) ? proto::next_step : 0));
+    out.state_bytes = point.state_bytes();
     account(out);
     return out;
   } catch (const NumericalError& e) {
@@ -181,6 +206,10 @@ proto::JobOutput UnitStore::run(const proto::JobInput& job) {
     out.message = e.what();
     account(out);
     return out;
+  } catch (...) {  // fatal: the run stops; the unit is no longer in a job
+    std::lock_guard<std::mutex> lock(mutex_);
+    factor_.at(job.unit).running = false;
+    throw;
   }
 }
 

@@ -10,11 +10,18 @@
 // until the held ones fit; a dropped unit rebuilds its factor from the matrix it was
 // made of on its next job (bit for bit: the answer does not change), and that rebuild's
 // CPU time lands in the job's measured cost, which the rebalancer reads.
+//
+// run() may be called for different units at once from the threads of a JobPool
+// (farm.threads_per_rank): the bookkeeping (clock, records, drops, peak) is under one
+// lock, a unit whose job is running is never dropped, and its factor counts at the size
+// it had (or is expected to reach) when its job began. Everything else — create,
+// commit, rollback, moves, checkpoints — runs between iterations on the main thread.
 #include "proto/job.h"
 #include "proto/messages.h"
 #include "worker/point_models.h"
 
 #include <map>
+#include <mutex>
 #include <vector>
 
 namespace fe2 {
@@ -63,13 +70,14 @@ class UnitStore {
   /// factor_counts(), as one dropped by the budget does.
   void restore(int unit, const Bytes& state);
 
-  /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall|kill]": unit K fails
-  /// from step S on, wherever it lives. A malformed value is an InputError naming the
+  /// Test hook FE2HEART_FAULT="unit=K[,step=S][,kind=numerical|fatal|stall|hang|kill]": unit K
+  /// fails from step S on, wherever it lives. A malformed value is an InputError naming the
   /// variable and the value (a typo must not silently test nothing).
   struct Fault {
     int unit = -1, step = 0;
     bool fatal = false;
     bool stall = false;  ///< freeze the process (SIGSTOP): the liveness tests
+    bool hang = false;   ///< freeze the thread running the job: the thread liveness tests
     bool kill = false;   ///< kill -9 the process: the restart tests
   };
   static Fault parse_fault(const std::string& value);
@@ -82,9 +90,13 @@ class UnitStore {
   std::map<int, PointModelPtr> units_;
   Fault fault_;
 
-  /// Drops least recently used factors of units other than `in_use` until those held
-  /// plus `need` bytes fit the budget; returns how many it dropped.
+  /// Drops least recently used factors of units other than `in_use` (and not running)
+  /// until those held plus `need` bytes fit the budget; returns how many it dropped.
+  /// Callers hold mutex_, as for the other helpers below.
   int make_room(int in_use, double need);
+  /// The bytes of factors held, a running unit's counted as when its job began.
+  double held_locked() const;
+  double held_by(int unit, const PointModel& point) const;
   /// The size a factor of `unit` will have: its own last one, else that of a unit of
   /// the same model here, else 0 (unknown until built; the check after the job fixes it).
   double expected_factor_bytes(int unit) const;
@@ -92,8 +104,11 @@ class UnitStore {
     long long last_use = 0;  ///< store clock at its last job
     double bytes = 0;        ///< size of its last factor (0: never built here)
     bool dropped = false;    ///< dropped by the budget and not rebuilt since
+    bool running = false;    ///< a job of this unit runs now (on some thread)
+    double running_bytes = 0;///< its factor's size, or the expected one, when that job began
     FactorCounts counts;
   };
+  mutable std::mutex mutex_;
   double budget_ = 0;
   long long clock_ = 0;
   std::map<int, FactorRecord> factor_;

@@ -11,6 +11,7 @@
 // OpenBLAS's own query; weak, so that a build against another BLAS still links (and
 // the check is then silent). CMake links libopenblas itself when it is installed.
 extern "C" char* openblas_get_corename(void) __attribute__((weak));
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
 namespace fe2 {
 
@@ -21,6 +22,12 @@ std::string lowercase(std::string s) {
   return s;
 }
 }  // namespace
+
+bool set_blas_threads(int threads) {
+  if (!openblas_set_num_threads) return false;
+  openblas_set_num_threads(threads);
+  return true;
+}
 
 BlasCore blas_core() {
   BlasCore c;

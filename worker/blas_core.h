@@ -18,6 +18,11 @@ struct BlasCore {
 
 BlasCore blas_core();
 
+/// Sets OpenBLAS's threads per call (false for another BLAS, left as it is). A rank whose
+/// jobs run on several threads (farm.threads_per_rank) calls BLAS from each: one BLAS
+/// thread per call, or the ranks' threads and OpenBLAS's fight for the cores.
+bool set_blas_threads(int threads);
+
 /// A warning naming the core, the CPU and the setting; "" when the kernels fit the CPU.
 std::string blas_core_warning(const BlasCore& core);
 

@@ -47,8 +47,8 @@ void receive_unit_states(proto::Transport& transport, const std::vector<proto::M
 }
 
 void run_worker_loop(proto::Transport& transport, UnitStore& store,
-                     const std::vector<int>& coordinator_of_unit, int batch) {
-  PullClient client(transport, store, batch);
+                     const std::vector<int>& coordinator_of_unit, int batch, int threads) {
+  PullClient client(transport, store, batch, threads);
   for (;;) {
     const proto::Control c = proto::Control::unpack(
         transport.recv(proto::Type::control, 0, nullptr, proto::kIndirectPatience));

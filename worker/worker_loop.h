@@ -12,10 +12,11 @@
 
 namespace fe2 {
 
-/// `coordinator_of_unit` maps each unit to the world rank of its coordinator.
+/// `coordinator_of_unit` maps each unit to the world rank of its coordinator; `threads`
+/// run the jobs (PullClient).
 /// @note Returns on the shutdown message.
 void run_worker_loop(proto::Transport& transport, UnitStore& store,
-                     const std::vector<int>& coordinator_of_unit, int batch);
+                     const std::vector<int>& coordinator_of_unit, int batch, int threads = 1);
 
 /// Answers a `fields` request: for each (unit, from, to) with from = this rank, sends
 /// the unit's UnitFields of output step `step` to rank `to`.

@@ -413,7 +413,13 @@ Schema make_run_spec_schema() {
                                   "unit placement: static, or rebalanced by measured cost")},
                 {"rebalance_at", choice("iteration", {"iteration", "step"},
                                         "when the cost-based policy may migrate units")},
-                {"batch", integer(4, Range::closed(1, 1e6), "jobs a worker pulls at once")},
+                {"batch", integer(4, Range::closed(1, 1e6), "jobs a worker pulls at once, per thread")},
+                {"threads_per_rank",
+                 integer(1, Range::closed(1, 256),
+                         "threads that run a rank's unit jobs: 1, the rank's main thread between "
+                         "its messages; more, that many threads while the main thread only talks "
+                         "MPI. The answer is bit for bit that of one thread; set "
+                         "OPENBLAS_NUM_THREADS=1")},
                 {"min_gain", number(0.03, Range::closed(0.0, 1.0),
                                     "least relative makespan gain worth a migration")},
                 {"tolerated_imbalance",

@@ -30,7 +30,7 @@ FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& co
       placement_(layout.initial_worker_of_unit),
       farm_units_(layout.farm_units()),
       t0_(wall_seconds()) {
-  if (store_) client_.emplace(transport_, *store_, spec.farm.batch);
+  if (store_) client_.emplace(transport_, *store_, spec.farm.batch, spec.farm.threads_per_rank);
   const std::vector<int> model = spec.model_of_points();
   model_of_point_ = model;
   num_models_ = static_cast<int>(spec.models.size());
@@ -82,6 +82,10 @@ void FarmEvaluator::rebalance(int step, int iteration, const std::vector<int64_t
       const bool refreshes = forced_model[model_of_point_[u]] > 0 || next_job_refreshes(u, step, iteration);
       planned_refresh_[u] = refreshes ? 1 : 0;
       cost[i] = costs_->predict_one(u, refreshes);
+      // A rank's threads share its jobs: its CPU work takes 1/threads of the wall time
+      // (every rank has farm.threads_per_rank), while a move's transfer does not shrink.
+      cost[i].next /= spec_.farm.threads_per_rank;
+      cost[i].rebuild /= spec_.farm.threads_per_rank;
       where[i] = index_of_rank[placement_[u]];
     }
     const Plan plan = plan_rebalance(cost, where, nw, spec_.farm);

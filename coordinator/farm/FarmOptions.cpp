@@ -40,6 +40,7 @@ FarmOptions FarmOptions::from_spec(SpecNode farm) {
                         ? FarmOptions::When::iteration
                         : FarmOptions::When::step;
   fo.batch = farm.integer("batch");
+  fo.threads_per_rank = farm.integer("threads_per_rank");
   fo.min_gain = farm.number("min_gain");
   fo.tolerated_imbalance = farm.number("tolerated_imbalance");
   fo.latency = farm.number("latency");

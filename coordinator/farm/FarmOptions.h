@@ -13,7 +13,11 @@ struct FarmOptions {
   bool coordinators_work = true;    ///< coordinator ranks also hold units (paper ranks 0–63)
   enum class Policy { round_robin, contiguous, cost_based } policy = Policy::cost_based;
   enum class When { iteration, step } rebalance_at = When::iteration;
-  int batch = 4;                    ///< jobs per pull
+  int batch = 4;                    ///< jobs per pull (per thread)
+  /// Threads that run a rank's unit jobs (worker/JobPool.h): 1, the main thread between
+  /// its messages; more, that many helpers while the main thread only talks MPI. One copy
+  /// of the mesh, spec and models per rank, not per core; answers bit for bit as one's.
+  int threads_per_rank = 1;
   double min_gain = 0.03;           ///< rebalance only if the predicted makespan drops this much
   double tolerated_imbalance = 0.05;///< ... and only if max/mean predicted load exceeds 1 + this
   double latency = 2e-6;            ///< network model: seconds per message

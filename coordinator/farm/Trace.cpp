@@ -2,6 +2,7 @@
 
 #include "common/error.h"
 
+#include <algorithm>
 #include <filesystem>
 
 namespace fe2 {
@@ -62,14 +63,18 @@ void Trace::iteration(const IterationTiming& t) {
 }
 
 void Trace::worker(const proto::WorkerStats& s, double micro_phase, double t0) {
+  // A rank of several threads (farm.threads_per_rank): busy_wall is its threads' mean,
+  // the wall time the rank was busy as a one-thread rank's is; busy stays the CPU sum.
+  const double busy_wall = s.busy_wall / std::max(1, s.threads);
   const nlohmann::json j = {{"step", s.step},
                             {"iteration", s.iteration},
                             {"worker", s.worker},
                             {"units", s.units_held},
                             {"jobs", s.jobs},
                             {"busy", s.busy_cpu},
-                            {"busy_wall", s.busy_wall},
-                            {"idle", std::max(0.0, micro_phase - s.busy_wall)},
+                            {"busy_wall", busy_wall},
+                            {"idle", std::max(0.0, micro_phase - busy_wall)},
+                            {"threads", s.threads},
                             {"wait", s.wait_wall},
                             {"t_begin", s.t_begin - t0},
                             {"t_end", s.t_end - t0},

@@ -5,8 +5,9 @@
 //                           bytes, migrations, jobs (run by workers), local_jobs and
 //                           local_cpu (points evaluated by their coordinators),
 //                           macro_law_jobs_sent (macro-law points that travelled)
-//   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU and
-//                           wall), idle, wait, t_begin/t_end, migrations, bytes
+//   trace_workers.jsonl     per (step, iteration, worker): units, jobs, busy (CPU summed
+//                           over the rank's threads, wall as their mean), idle, wait,
+//                           threads, t_begin/t_end, migrations, bytes
 //   trace_units.jsonl       per (step, iteration, unit): worker, cost, refresh_cost,
 //                           kind, GMRES, state_bytes, factor_evictions (other units'
 //                           factors its worker dropped for it), factor_rebuilt

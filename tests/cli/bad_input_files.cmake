@@ -90,7 +90,7 @@ foreach(fault "unit=x" "unit=1,kind=stall_forever" "unit=1,steps=2")
   if(fault STREQUAL "unit=x")
     set(why "unit=x is not a non-negative integer")
   elseif(fault MATCHES "kind")
-    set(why "unknown kind 'stall_forever'; expected a kind [(]numerical, fatal, stall, kill[)]")
+    set(why "unknown kind 'stall_forever'; expected a kind [(]numerical, fatal, stall, hang, kill[)]")
   else()
     set(why "unknown field 'steps'; expected a field [(]unit, step, kind[)]; did you mean \"step\"[?]")
   endif()
@@ -143,3 +143,10 @@ fe2_cli_test(cli.bad_input.fluid_two_rings_one_valve 2
 fe2_cli_test(cli.bad_input.fluid_valve_unknown_cavity 2
              "/fluid/boundaries/3/cavity: got \"lvv\", expected a cavity of the circulation [(]lv[)]; did you mean \"lv\"[?]"
              ARGS validate ${FE2_CLI_BAD}/fluid_valve_unknown_cavity.json)
+
+# farm.threads_per_rank (issue #32 §3): units that may factor with MUMPS (it calls MPI,
+# which helper threads may not) are refused naming the model, the keys and what runs.
+fe2_cli_test(cli.bad_input.threads_with_mumps.run 2
+             "farm.threads_per_rank = 2: model 'muscle' factors in single precision with MUMPS [(]/models/muscle/unit/solver: single_factor 'supernodal', factorization 'auto'[)].*expected farm.threads_per_rank 1, or solver.factorization \"cholesky\""
+             ABSENT ${FE2_CLI_OUT}/threads_with_mumps
+             ARGS run ${FE2_CLI_BAD}/threads_with_mumps.json --out ${FE2_CLI_OUT}/threads_with_mumps)

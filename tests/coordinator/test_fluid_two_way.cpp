@@ -417,7 +417,7 @@ TEST(FluidTwoWay, TheIsovolumicContractionWithBloodTakesTwiceTheDefaultStep) {
 // rings and the circulation see the same wall. The default beat's LV with two-way blood
 // in 20-ms steps from end-diastole through the aortic ring's opening into the ejection
 // (about 70 s).
-TEST(FluidTwoWay, HomogeneousUnitsOfTheMacroLawGiveTheMacroBeatWithBlood) {
+TEST(LongFluidTwoWay, HomogeneousUnitsOfTheMacroLawGiveTheMacroBeatWithBlood) {
   namespace fs = std::filesystem;
   const fs::path file = fs::path(FE2_SOURCE_DIR) / "configs" / "lv-beat-blood-macro.json";
   auto beat = [&](bool fe2) {
