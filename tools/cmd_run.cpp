@@ -26,6 +26,7 @@
 #include <chrono>
 #include <csignal>
 #include <ctime>
+#include <sched.h>
 #include <filesystem>
 
 namespace fe2::cli {
@@ -192,6 +193,21 @@ void check_threads_per_rank(const RunSpec& spec) {
           m.plan->options.factorization == MicroSolverOptions::Factorization::lu ? "lu" : "auto"));
 }
 
+/// mpirun binds a rank to one core by default (Open MPI, up to two ranks): its helper
+/// threads then share that core and run no faster than one. Says so, with the fix.
+void warn_if_threads_share_cores(int threads, int rank) {
+  if (threads <= 1) return;
+  cpu_set_t mask;
+  CPU_ZERO(&mask);
+  if (sched_getaffinity(0, sizeof mask, &mask) != 0) return;
+  const int cpus = CPU_COUNT(&mask);
+  if (cpus >= threads) return;
+  spdlog::warn("rank {}: farm.threads_per_rank is {} but this rank may run on {} CPU(s) only (its "
+               "affinity mask): the threads share them. Bind each rank to {} cores: `mpirun "
+               "--map-by slot:PE={}` (or `--bind-to none`); Slurm: `--cpus-per-task={}`",
+               rank, threads, cpus, threads, threads, threads);
+}
+
 std::string format_duration(double s) {
   if (s < 120) return fmt::format("{:.1f} s", s);
   if (s < 7200) return fmt::format("{:.1f} min", s / 60);
@@ -290,6 +306,7 @@ int run(const RunOptions& o) {
   proto::set_stall_timeout(spec.farm.stall_timeout);
   check_ranks_agree(world, spec);
   if (rank != 0) spdlog::set_level(spdlog::level::warn);  // summaries from rank 0 only
+  if (layout.is_worker(rank)) warn_if_threads_share_cores(spec.farm.threads_per_rank, rank);
 
   const bool coordinator = layout.is_coordinator(rank);
   const proto::Group coords = world.split(coordinator ? 0 : -1, rank);

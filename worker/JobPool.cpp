@@ -171,7 +171,14 @@ void JobPool::collect(int source, std::vector<proto::JobOutput>& out) {
 
 void JobPool::wait_for_a_result(double seconds) {
   std::unique_lock<std::mutex> lock(shared_->mutex);
-  shared_->finished.wait_for(lock, std::chrono::duration<double>(seconds));
+  // A result already waiting returns at once: a job that ended after the caller's last
+  // collect() must not cost it the whole nap.
+  shared_->finished.wait_for(lock, std::chrono::duration<double>(seconds), [&] {
+    if (shared_->error) return true;
+    for (const auto& q : shared_->queues)
+      if (!q.finished.empty()) return true;
+    return false;
+  });
 }
 
 void JobPool::check_alive(double limit) const {

@@ -50,7 +50,8 @@ class JobPool {
   /// Moves the finished results of `source` into `out`; rethrows a fatal error that a
   /// helper's job raised.
   void collect(int source, std::vector<proto::JobOutput>& out);
-  /// Waits until some job finishes or `seconds` pass.
+  /// Waits until a finished result (or a helper's error) is there to collect, or
+  /// `seconds` pass.
   void wait_for_a_result(double seconds);
   /// Throws StallError if a helper's job has run longer than `limit` wall seconds.
   void check_alive(double limit) const;

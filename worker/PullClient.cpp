@@ -121,6 +121,12 @@ bool PullClient::poll(bool block) {
   return finished();
 }
 
+bool PullClient::wait_for_helpers(double seconds) {
+  if (pool_.threads() == 1 || pool_.pending() == 0) return false;
+  pool_.wait_for_a_result(seconds);
+  return true;
+}
+
 proto::WorkerStats PullClient::stats() const { return stats_; }
 
 std::pair<int, int> migrate(proto::Transport& transport, UnitStore& store,

@@ -31,6 +31,10 @@ class PullClient {
   /// Jobs run, batches taken and pulls sent so far (tells a polling loop whether
   /// anything happened).
   long long progress() const { return progress_; }
+  /// Sleeps until one of the helper threads' jobs finishes, or `seconds` pass: the nap of
+  /// a polling loop that has nothing else to do. Returns false at once when no helper
+  /// has a job (the caller then naps its own way).
+  bool wait_for_helpers(double seconds);
   /// This iteration's account (valid after finished()).
   proto::WorkerStats stats() const;
   void count_migrations(int in, int out) { migrations_in_ += in, migrations_out_ += out; }

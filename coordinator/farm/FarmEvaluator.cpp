@@ -15,6 +15,10 @@ namespace fe2 {
 namespace {
 /// Local points evaluated between two polls of the job server (each a few µs).
 constexpr int kLocalPointsPerPoll = 32;
+/// The longest nap while this rank's helper threads run its jobs (seconds): a finished
+/// job wakes the loop at once; the limit bounds how late another worker's pull is
+/// served. A 20 µs nap loop there took a whole core from the helpers.
+constexpr double kHelperNap = 2e-4;
 }  // namespace
 
 FarmEvaluator::FarmEvaluator(proto::Transport& transport, const proto::Group& coordinators,
@@ -203,7 +207,7 @@ void FarmEvaluator::serve_until_done() {
       client_->poll(true);
     } else if (client_done()) {
       server_.poll(true);
-    } else {
+    } else if (!client_->wait_for_helpers(kHelperNap)) {
       std::this_thread::sleep_for(std::chrono::microseconds(20));
     }
   }
