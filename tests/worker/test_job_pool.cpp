@@ -42,6 +42,16 @@ std::vector<proto::JobOutput> collect_all(JobPool& pool, int source, size_t n) {
   return out;
 }
 
+/// `n` finished results of source 0 keep the pool pending (a result waiting for its pull
+/// must keep the main thread awake) until collected.
+void expect_pending_until_collected(JobPool& pool, size_t n) {
+  EXPECT_EQ(pool.pending(), n) << "finished results not yet collected must count";
+  std::vector<proto::JobOutput> out;
+  pool.collect(0, out);
+  EXPECT_EQ(out.size(), n);
+  EXPECT_EQ(pool.pending(), 0u);
+}
+
 TEST(JobPool, EveryJobRunsOnceOnTheHelpersAndReachesItsSource) {
   std::atomic<int> runs{0};
   const std::thread::id main_thread = std::this_thread::get_id();
@@ -90,11 +100,7 @@ TEST(JobPool, OneThreadRunsTheJobsOnTheCallerInQueueOrder) {
   while (pool.run_one_here()) {
   }
   EXPECT_EQ(order, (std::vector<int>{5, 1, 7}));
-  EXPECT_EQ(pool.pending(), 3u) << "results not yet collected still count";
-  std::vector<proto::JobOutput> out;
-  pool.collect(0, out);
-  EXPECT_EQ(out.size(), 3u);
-  EXPECT_EQ(pool.pending(), 0u);
+  expect_pending_until_collected(pool, 3);
 }
 
 TEST(JobPool, AFinishedResultNotYetCollectedKeepsThePoolPending) {
@@ -106,11 +112,7 @@ TEST(JobPool, AFinishedResultNotYetCollectedKeepsThePoolPending) {
     pool.wait_for_a_result(0.001);
   ASSERT_EQ(pool.queued(0), 0u);
   ASSERT_EQ(pool.running(0), 0);
-  EXPECT_EQ(pool.pending(), 1u) << "a result waiting for its pull must keep the main thread awake";
-  std::vector<proto::JobOutput> out;
-  pool.collect(0, out);
-  ASSERT_EQ(out.size(), 1u);
-  EXPECT_EQ(pool.pending(), 0u);
+  expect_pending_until_collected(pool, 1);
 }
 
 TEST(JobPool, AHelpersFatalErrorReachesTheMainThread) {
