@@ -26,7 +26,8 @@ fi
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 
-jobs=$(nproc)
+# The machine's cores: GNU nproc would answer OMP_NUM_THREADS (1, set above).
+jobs=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)
 # The test build is warning-free and stays so (-Werror); the demo build only warns.
 werror=OFF
 [[ $mode == test ]] && werror=ON

@@ -27,7 +27,7 @@ case $cmd in
     cmake -S "$top" -B "$build" -DFE2_FUZZ=ON -DCMAKE_BUILD_TYPE=Release \
           -DCMAKE_CXX_FLAGS_RELEASE="-O1 -gline-tables-only -DNDEBUG" \
           -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ "${launcher[@]}" >/dev/null
-    cmake --build "$build" -j"$(nproc)" --target fuzzers
+    cmake --build "$build" -j"$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)" --target fuzzers
     exit 0 ;;
   list) targets; exit 0 ;;
   all)

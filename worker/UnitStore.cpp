@@ -47,9 +47,9 @@ UnitStore::Fault UnitStore::parse_fault(const std::string& value) {
     } else if (key == "step") {
       fault.step = integer(key, v);
     } else if (key == "kind") {
-      if (v != "numerical" && v != "fatal" && v != "stall" && v != "hang" && v != "kill")
-        bad(fmt::format("unknown kind '{}'; expected {}", v,
-                        known_names("a kind", v, {"numerical", "fatal", "stall", "hang", "kill"})));
+      const std::vector<std::string> kinds = {"numerical", "fatal", "stall", "hang", "kill"};
+      if (std::find(kinds.begin(), kinds.end(), v) == kinds.end())
+        bad(fmt::format("unknown kind '{}'; expected {}", v, known_names("a kind", v, kinds)));
       fault.fatal = v == "fatal";
       fault.stall = v == "stall";
       fault.hang = v == "hang";
