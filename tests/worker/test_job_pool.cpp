@@ -32,10 +32,19 @@ proto::JobOutput answer(const proto::JobInput& in) {
   return out;
 }
 
-/// Collects until `n` results of `source` are in (or a few seconds pass).
+/// True until `seconds` have passed since the first call of this deadline: loops that
+/// wait for helpers give up by the clock, not by a count (a waiting result of another
+/// source wakes wait_for_a_result at once).
+struct Deadline {
+  std::chrono::steady_clock::time_point end =
+      std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  bool open() const { return std::chrono::steady_clock::now() < end; }
+};
+
+/// Collects until `n` results of `source` are in (or the deadline passes).
 std::vector<proto::JobOutput> collect_all(JobPool& pool, int source, size_t n) {
   std::vector<proto::JobOutput> out;
-  for (int k = 0; k < 5000 && out.size() < n; ++k) {
+  for (Deadline d; d.open() && out.size() < n;) {
     pool.collect(source, out);
     if (out.size() < n) pool.wait_for_a_result(0.001);
   }
@@ -108,7 +117,7 @@ TEST(JobPool, AFinishedResultNotYetCollectedKeepsThePoolPending) {
   pool.reset(1);
   pool.push(0, job(4));
   // Wait until the job has finished (neither queued nor running) without collecting.
-  for (int k = 0; k < 5000 && (pool.queued(0) > 0 || pool.running(0) > 0); ++k)
+  for (Deadline d; d.open() && (pool.queued(0) > 0 || pool.running(0) > 0);)
     pool.wait_for_a_result(0.001);
   ASSERT_EQ(pool.queued(0), 0u);
   ASSERT_EQ(pool.running(0), 0);
@@ -126,7 +135,7 @@ TEST(JobPool, AHelpersFatalErrorReachesTheMainThread) {
   for (int u = 0; u < 6; ++u) pool.push(0, job(u));
   std::vector<proto::JobOutput> out;
   bool thrown = false;
-  for (int k = 0; k < 5000 && !thrown; ++k) {
+  for (Deadline d; d.open() && !thrown;) {
     try {
       pool.collect(0, out);
       pool.wait_for_a_result(0.001);
