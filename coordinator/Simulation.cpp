@@ -32,6 +32,13 @@ const std::vector<double>& StepRecord::residual(const std::string& field) const 
   return none;
 }
 
+const std::vector<double>& StepRecord::correction(const std::string& field) const {
+  static const std::vector<double> none;
+  for (const auto& r : residuals)
+    if (r.field == field) return r.corrections;
+  return none;
+}
+
 Simulation::Simulation(const RunSpec& spec, PointEvaluator& points, const MacroExtension& extension)
     : Simulation(spec, points, proto::Group(), MacroPartition::whole(spec.mesh), extension) {}
 
@@ -237,12 +244,21 @@ Simulation::Outcome Simulation::iterate(int step, int it, double t_new, double d
   return Outcome::solved;
 }
 
+namespace {
+
+/// Appends a correction's per-field norms to the step's histories (table order).
+void record_corrections(StepRecord& rec, const std::vector<double>& norms) {
+  for (size_t f = 0; f < norms.size() && f < rec.residuals.size(); ++f) rec.residuals[f].corrections.push_back(norms[f]);
+}
+
+}  // namespace
+
 bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
   problem_.prepare();
   const Eigen::VectorXd du_D = problem_.prescribed_increment(t_new);
   const bool has_du_D = du_D.squaredNorm() > 0.0;
   rec.residuals.clear();
-  for (const Field& f : system().fields()) rec.residuals.push_back({f.name(), {}});
+  for (const Field& f : system().fields()) rec.residuals.push_back({f.name(), {}, {}});
   rec.micro_residuals.clear();
   coupling_.force_refresh(false);
   StallGuard stall;
@@ -283,6 +299,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     }
     if (outcome == Outcome::rejected) {
       problem_.retract(search.alpha(), lifted, du_D);
+      record_corrections(rec, problem_.correction_norms(search.alpha()));
       continue;
     }
     lifted = first;
@@ -291,6 +308,7 @@ bool Simulation::newton(int step, double t_new, double dt, StepRecord& rec) {
     } catch (const NumericalError& e) {
       throw NumericalError(fmt::format("{} at t = {:.6g}", e.what(), t_new));
     }
+    record_corrections(rec, problem_.correction_norms());
   }
   rec.iterations += spec_.newton_max_iterations;
   rec.line_search_backtracks += search.backtracks();

@@ -43,7 +43,8 @@ class CavityPressureTerm;
 
 struct FieldResidualHistory {
   std::string field;
-  std::vector<double> values;
+  std::vector<double> values;       ///< its residual norm per iteration
+  std::vector<double> corrections;  ///< max |Δx| over its free DOFs per correction taken
 };
 
 struct StepRecord {
@@ -58,6 +59,8 @@ struct StepRecord {
   std::vector<double> micro_residuals;///< max_k ‖r_k‖ / r_ref,k per iteration (last substep)
   /// The residual history of `field` (empty if the scene has no such field).
   const std::vector<double>& residual(const std::string& field) const;
+  /// The Newton corrections of `field` (MacroProblem::correction_norms; empty if none).
+  const std::vector<double>& correction(const std::string& field) const;
   int gmres_iterations = 0;
   int refreshes = 0;
   int factor_evictions = 0;           ///< farm.factor_memory_budget: factors dropped ...

@@ -82,7 +82,7 @@ def numbers(node, path=""):
 def max_relative_difference(a, b):
     """(largest |x − y| relative to the largest |x| of the same quantity — the path with its
     indices as wildcards, e.g. /history/*/probes/tip/* — and that path), residual histories
-    left out (they are convergence noise below the tolerance)."""
+    and Newton corrections left out (convergence noise below the tolerance)."""
     before, after = dict(numbers(a)), dict(numbers(b))
     family = lambda path: re.sub(r"/\d+", "/*", path)
     scale = {}
@@ -90,7 +90,7 @@ def max_relative_difference(a, b):
         scale[family(path)] = max(scale.get(family(path), 0.0), abs(x))
     worst = (0.0, "")
     for path, x in before.items():
-        if path not in after or "residuals" in path or after[path] == x:
+        if path not in after or "residuals" in path or "corrections" in path or after[path] == x:
             continue
         s = scale[family(path)]
         if s > 0:

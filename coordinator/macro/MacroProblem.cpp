@@ -155,6 +155,17 @@ void MacroProblem::retract(double alpha, bool first, const Eigen::VectorXd& du_D
   system_.constraints().distribute(x_);
 }
 
+std::vector<double> MacroProblem::correction_norms(double alpha) const {
+  std::vector<double> norms;
+  for (const Field& f : system_.fields()) {
+    double m = 0.0;
+    for (int dof = f.offset(); dof < f.offset() + f.size(); ++dof)
+      if (const int col = system_.column(dof); col >= 0) m = std::max(m, std::abs(alpha * du_[col]));
+    norms.push_back(m);
+  }
+  return norms;
+}
+
 bool MacroProblem::accept(double t_new, double dt) {
   const MacroState s = state(t_new, dt);
   bool all = true;

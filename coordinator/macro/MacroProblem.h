@@ -69,6 +69,10 @@ class MacroProblem {
   /// A line search's shorter step: x = x_k + α Δx (and the whole Δx_D if `first`), from
   /// the x_k and Δx of the last update().
   void retract(double alpha, bool first, const Eigen::VectorXd& du_D);
+  /// Each field's largest |α Δx| over its free DOFs (table order, the field's units), of
+  /// the last solve's correction taken with length α: Newton's order is read in these
+  /// (the residual norms are scaled, so their logs' ratio is not an order).
+  std::vector<double> correction_norms(double alpha = 1.0) const;
 
   /// Whether every term accepts the converged step (MacroTerm::accept; each is asked).
   bool accept(double t_new, double dt);

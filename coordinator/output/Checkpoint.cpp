@@ -81,6 +81,7 @@ void put_record(ByteWriter& w, const StepRecord& s) {
   for (const auto& f : s.residuals) {
     w.put_string(f.field);
     put_vector(w, f.values);
+    put_vector(w, f.corrections);
   }
   put_vector(w, s.micro_residuals);
   w.put<int32_t>(s.gmres_iterations);
@@ -119,6 +120,7 @@ StepRecord get_record(ByteReader& r) {
   for (auto& f : s.residuals) {
     f.field = r.get_string();
     f.values = r.get_array<double>();
+    f.corrections = r.get_array<double>();
   }
   s.micro_residuals = r.get_array<double>();
   s.gmres_iterations = r.get<int32_t>();

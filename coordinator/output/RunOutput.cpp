@@ -221,15 +221,20 @@ void add_step_circulation(const Circulation& c, const StepRecord& h, json& step)
 
 /// One entry of summary.json's history.
 json step_entry(const RunSpec& spec, const StepRecord& h) {
-  // Each macro field's residual norm per Newton iteration, under the field's name.
-  json residuals = json::object();
-  for (const auto& f : h.residuals) residuals[f.field] = f.values;
+  // Each macro field's residual norm per Newton iteration, and the largest |Δx| of each
+  // correction taken (in the field's units), under the field's name.
+  json residuals = json::object(), corrections = json::object();
+  for (const auto& f : h.residuals) {
+    residuals[f.field] = f.values;
+    corrections[f.field] = f.corrections;
+  }
   json step = {{"step", h.step},
                {"time", h.time},
                {"iterations", h.iterations},
                {"cutbacks", h.cutbacks},
                {"retries", h.retries},
                {"residuals", residuals},
+               {"corrections", corrections},
                {"micro_residuals", h.micro_residuals},
                {"gmres_iterations", h.gmres_iterations},
                {"refreshes", h.refreshes},
