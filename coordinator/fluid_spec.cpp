@@ -64,6 +64,7 @@ std::shared_ptr<const FluidSetup> read_fluid(SpecNode node, const RunSpec& spec)
     node.fail("element", fmt::format("the element of the mesh's order ({}): {}", order == 2 ? "quadratic" : "linear",
                                      order == 2 ? "\"taylor_hood\", \"taylor_hood_supg\" or \"auto\""
                                                 : "\"p1p1\" or \"auto\""));
+  s.convection = node.choice("convection") == "skew_symmetric" ? ConvectiveForm::skew_symmetric : ConvectiveForm::advective;
   const std::string time = node.choice("time");
   s.time = time == "bdf2" ? TimeScheme::bdf2 : time == "bdf1" ? TimeScheme::backward_euler : TimeScheme::none;
   s.body_force = vec3_of(node.numbers("body_force"));

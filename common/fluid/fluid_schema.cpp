@@ -102,6 +102,14 @@ Schema fluid_schema() {
                           "stabilization (convection-dominated flows: a ventricle); p1p1: "
                           "SUPG/PSPG/LSIC-stabilized P1/P1 "
                           "(linear meshes); auto: the one of the mesh's order")},
+       {"convection",
+        choice("advective", {"advective", "skew_symmetric"},
+               "the convective term: advective, ρ(c·∇)v; skew_symmetric adds Temam's ½ρ(div v)v, zero for the "
+               "exact flow, so that the blood's kinetic energy changes by exactly what its open faces carry, the "
+               "forces' work and the viscous dissipation, on the moving mesh too (the advective form is off by "
+               "½∫ρ|v|² div v, which a Taylor–Hood velocity keeps). skew_symmetric suits enclosed blood (a cavity "
+               "with valve rings); at a pressure inlet it lets the inflow's kinetic energy in unchecked "
+               "(configs/tube-flow.json does not converge past t = 0.4 s with it)")},
        {"time", choice("bdf2", {"bdf2", "bdf1", "steady"},
                        "∂v/∂t by BDF2 (second order, variable step), BDF1, or none (the steady equations)")},
        {"body_force", numbers(3, std::vector<double>{0, 0, 0}, "body force per unit mass (length/s²)")},

@@ -14,13 +14,14 @@ StabilizationParameters stabilization_parameters(const Mat3& G, const Vec3& c, d
   return {tau_m, 1.0 / (tau_m * G.trace())};
 }
 
-void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, const FluidElementState& s,
-                           Eigen::VectorXd& R, Eigen::MatrixXd* K) {
+void navier_stokes_element(FluidElementKind kind, ConvectiveForm convection, const NewtonianFluid& fluid,
+                           const FluidElementState& s, Eigen::VectorXd& R, Eigen::MatrixXd* K) {
   const int order = fluid_velocity_order(kind);
   const bool stabilized = kind != FluidElementKind::taylor_hood;
   const bool pspg = kind == FluidElementKind::stabilized_p1p1;  // Taylor–Hood is inf–sup stable
   const int n = tet_nodes(order);
   const int nv = 3 * n, ndof = nv + 4;
+  const double temam = convection == ConvectiveForm::skew_symmetric ? 0.5 * fluid.density : 0.0;
   FE2_CHECK(s.x.cols() == n && s.v.cols() == n && s.v_rate.cols() == n && s.w.cols() == n,
             "fluid element: {} nodes expected", n);
   const double rho = fluid.density, mu = fluid.viscosity, nu = mu / rho;
@@ -52,9 +53,10 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
     const Vec3 inertia = rho * (v_t + L * c - s.body_force);  // ρ(a_χ − f)
     const Eigen::VectorXd c_grad_N = gN.transpose() * c;       // (c·∇)N_a
 
-    // Galerkin: momentum and mass.
+    // Galerkin: momentum (with Temam's ½ρ(div v)v in the skew-symmetric form) and mass.
+    const Vec3 skew = temam * div_v * v;
     for (int a = 0; a < n; ++a)
-      R.segment<3>(3 * a) += dV * (N[a] * inertia + 2.0 * mu * D * gN.col(a) - p * gN.col(a));
+      R.segment<3>(3 * a) += dV * (N[a] * (inertia + skew) + 2.0 * mu * D * gN.col(a) - p * gN.col(a));
     R.tail<4>() -= dV * div_v * M;
 
     StabilizationParameters tau;
@@ -77,7 +79,8 @@ void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, c
       return rho * ((s.dv_rate_dv * N[b] + c_grad_N[b]) * Mat3::Identity() + N[b] * L);
     };
     for (int b = 0; b < n; ++b) {
-      const Mat3 A_b = dinertia(b);
+      // ∂(½ρ div v v_i)/∂v_bj = ½ρ (div v δ_ij N_b + v_i ∂_j N_b)
+      const Mat3 A_b = dinertia(b) + temam * (div_v * N[b] * Mat3::Identity() + v * gN.col(b).transpose());
       for (int a = 0; a < n; ++a) {
         // Viscous: μ(δ_ij ∇N_a·∇N_b + ∂_j N_a ∂_i N_b)
         const Mat3 visc = mu * (gN.col(a).dot(gN.col(b)) * Mat3::Identity() + gN.col(b) * gN.col(a).transpose());

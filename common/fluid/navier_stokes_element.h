@@ -24,6 +24,18 @@
 //                                                          element, 0 for P1: consistent)
 //     SUPG  + ∫ τ_M (c·∇w)·r_M      PSPG  − ∫ (τ_M/ρ) ∇q·r_M      LSIC  + ∫ ρ τ_C div w div v
 //
+// Convective form (ConvectiveForm):
+//   advective        ρ(c·∇)v as above.
+//   skew_symmetric   + ½ρ(div v)v (Temam's term: zero for the exact, solenoidal flow).
+//                    Tested with v, ρ(c·∇)v·v + ½ρ|v|² div v = ½ρ div(|v|² c) + ½ρ|v|² div v̂,
+//                    and the last term is what the moving mesh adds to d/dt ∫½ρ|v|²: so the
+//                    blood's kinetic energy changes by exactly the flux ½ρ|v|² c·n through its
+//                    open faces, the work of the forces and the viscous dissipation, whatever
+//                    div v a Taylor–Hood velocity keeps (it is zero only against P1). With
+//                    the advective form the balance is off by ½∫ρ|v|² div v: an O(h) defect
+//                    Δt → 0 does not remove. The strong residual r_M of the stabilization
+//                    keeps the advective form (both are consistent).
+//
 // The tangent is consistent in v and p, the τ's dependence on c included (so Newton is
 // quadratic on convective flows). The mesh (x, v̂) is data here: the shape derivatives
 // (the tangent with respect to the mesh motion) belong to the coupled problem.
@@ -37,6 +49,7 @@
 namespace fe2 {
 
 enum class FluidElementKind { taylor_hood, taylor_hood_supg, stabilized_p1p1 };
+enum class ConvectiveForm { advective, skew_symmetric };
 
 /// The velocity's polynomial degree (and the mesh's order) of an element kind.
 inline int fluid_velocity_order(FluidElementKind kind) { return kind == FluidElementKind::stabilized_p1p1 ? 1 : 2; }
@@ -63,8 +76,8 @@ inline int fluid_element_dofs(FluidElementKind kind) { return fluid_velocity_ord
 
 /// The element residual R (fluid_element_dofs) and, if `K` is not null, its tangent
 /// ∂R/∂(v, p). Throws fe2::NumericalError on an inverted or degenerate element.
-void navier_stokes_element(FluidElementKind kind, const NewtonianFluid& fluid, const FluidElementState& s,
-                           Eigen::VectorXd& R, Eigen::MatrixXd* K);
+void navier_stokes_element(FluidElementKind kind, ConvectiveForm convection, const NewtonianFluid& fluid,
+                           const FluidElementState& s, Eigen::VectorXd& R, Eigen::MatrixXd* K);
 
 /// τ_M and τ_C of the stabilized element at convective velocity c (see above).
 struct StabilizationParameters {

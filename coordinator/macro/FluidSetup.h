@@ -112,6 +112,7 @@ struct FluidSetup {
   std::vector<int> regions;          ///< region tags of the fluid
   NewtonianFluid fluid;
   FluidElementKind element = FluidElementKind::taylor_hood;
+  ConvectiveForm convection = ConvectiveForm::advective;
   TimeScheme time = TimeScheme::bdf2;///< none: the steady equations
   Vec3 body_force = Vec3::Zero();    ///< per unit mass
   std::vector<FluidBoundary> boundaries;

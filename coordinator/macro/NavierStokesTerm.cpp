@@ -7,9 +7,10 @@
 namespace fe2 {
 
 NavierStokesTerm::NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind,
-                                   NewtonianFluid fluid, Vec3 body_force, double residual_pressure,
-                                   bool shape_derivatives)
-    : mesh_(mesh), elements_(std::move(elements)), kind_(kind), fluid_(fluid), body_force_(body_force),
+                                   ConvectiveForm convection, NewtonianFluid fluid, Vec3 body_force,
+                                   double residual_pressure, bool shape_derivatives)
+    : mesh_(mesh), elements_(std::move(elements)), kind_(kind), convection_(convection), fluid_(fluid),
+      body_force_(body_force),
       residual_pressure_(residual_pressure), shape_derivatives_(shape_derivatives) {}
 
 void NavierStokesTerm::declare(MacroSystem& system) {
@@ -95,7 +96,7 @@ void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
   for (size_t k = 0; k < elements_.size(); ++k) {
     gather_element(k, state, s);
     try {
-      navier_stokes_element(kind_, fluid_, s, R, &K);
+      navier_stokes_element(kind_, convection_, fluid_, s, R, &K);
     } catch (const NumericalError& e) {
       throw NumericalError(fmt::format("{} (element {})", e.what(), elements_[k]));
     }
@@ -120,7 +121,7 @@ Eigen::MatrixXd NavierStokesTerm::with_shape_derivatives(const FluidElementState
     for (int j = 0; j < 3; ++j) {
       moved.x(j, b) += h;
       moved.w(j, b) += dd_dd * h;
-      navier_stokes_element(kind_, fluid_, moved, Rh, nullptr);
+      navier_stokes_element(kind_, convection_, fluid_, moved, Rh, nullptr);
       KK.col(K.cols() + 3 * b + j) = (Rh - R) / h;
       moved.x(j, b) = s.x(j, b);
       moved.w(j, b) = s.w(j, b);

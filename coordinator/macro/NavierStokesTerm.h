@@ -22,8 +22,8 @@ class NavierStokesTerm final : public MacroTerm {
  public:
   /// `residual_pressure`: the pressure whose nodal forces floor the momentum residual's
   /// reference (a flow whose forces all vanish, at rest or uniform, still converges).
-  NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, NewtonianFluid fluid,
-                   Vec3 body_force, double residual_pressure, bool shape_derivatives = false);
+  NavierStokesTerm(const TetMesh& mesh, std::vector<int> elements, FluidElementKind kind, ConvectiveForm convection,
+                   NewtonianFluid fluid, Vec3 body_force, double residual_pressure, bool shape_derivatives = false);
   std::string name() const override { return "navier-stokes"; }
   Physics physics() const override { return Physics::fluid; }
   void declare(MacroSystem& system) override;
@@ -43,6 +43,7 @@ class NavierStokesTerm final : public MacroTerm {
   const TetMesh& mesh_;
   std::vector<int> elements_;
   FluidElementKind kind_;
+  ConvectiveForm convection_;
   NewtonianFluid fluid_;
   Vec3 body_force_;
   double residual_pressure_;

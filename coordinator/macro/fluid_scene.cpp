@@ -287,8 +287,9 @@ std::vector<std::unique_ptr<MacroTerm>> fluid_terms(const TetMesh& mesh, const F
     if (std::find(setup.regions.begin(), setup.regions.end(), mesh.region[e]) != setup.regions.end())
       elements.push_back(e);
   std::vector<std::unique_ptr<MacroTerm>> terms;
-  terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.fluid, setup.body_force,
-                                                     setup.residual_pressure, setup.shape_derivatives));
+  terms.push_back(std::make_unique<NavierStokesTerm>(mesh, elements, setup.element, setup.convection, setup.fluid,
+                                                     setup.body_force, setup.residual_pressure,
+                                                     setup.shape_derivatives));
   std::vector<OpenBoundaryTerm::Boundary> open;
   std::vector<FluxConstraintTerm::Boundary> flux;
   const std::shared_ptr<ValveStates> valves = valve_states(setup, cavities);

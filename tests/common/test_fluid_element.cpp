@@ -45,8 +45,8 @@ FluidElementState random_element(int order, unsigned seed, double speed) {
 
 /// The residual at the element's unknowns `z` (velocity node-major, then pressure); the
 /// rate moves with v by the scheme's coefficient, as the time integration makes it.
-Eigen::VectorXd residual_at(FluidElementKind kind, const NewtonianFluid& f, FluidElementState s,
-                            const Eigen::VectorXd& z) {
+Eigen::VectorXd residual_at(FluidElementKind kind, ConvectiveForm form, const NewtonianFluid& f,
+                            FluidElementState s, const Eigen::VectorXd& z) {
   const int n = static_cast<int>(s.v.cols());
   for (int a = 0; a < n; ++a) {
     const Vec3 dv = z.segment<3>(3 * a) - s.v.col(a);
@@ -55,14 +55,15 @@ Eigen::VectorXd residual_at(FluidElementKind kind, const NewtonianFluid& f, Flui
   }
   s.p = z.tail<4>();
   Eigen::VectorXd R;
-  navier_stokes_element(kind, f, s, R, nullptr);
+  navier_stokes_element(kind, form, f, s, R, nullptr);
   return R;
 }
 
 TEST(FluidElement, TangentIsTheDerivativeOfTheResidualGalerkinAndStabilized) {
   const NewtonianFluid blood{1.06, 0.04};
   for (auto kind : {FluidElementKind::taylor_hood, FluidElementKind::taylor_hood_supg,
-                    FluidElementKind::stabilized_p1p1}) {
+                    FluidElementKind::stabilized_p1p1})
+  for (auto form : {ConvectiveForm::advective, ConvectiveForm::skew_symmetric}) {
     const int order = fluid_velocity_order(kind);
     for (double speed : {0.0, 1.0, 30.0}) {  // Stokes-like to convection-dominated
       const FluidElementState s = random_element(order, 7, speed);
@@ -71,18 +72,19 @@ TEST(FluidElement, TangentIsTheDerivativeOfTheResidualGalerkinAndStabilized) {
       for (int a = 0; a < n; ++a) z.segment<3>(3 * a) = s.v.col(a);
       z.tail<4>() = s.p;
       Eigen::MatrixXd K;
-      navier_stokes_element(kind, blood, s, R, &K);
+      navier_stokes_element(kind, form, blood, s, R, &K);
       ASSERT_EQ(R.size(), fluid_element_dofs(kind));
-      EXPECT_LT((R - residual_at(kind, blood, s, z)).norm(), 1e-14 * R.norm());
+      EXPECT_LT((R - residual_at(kind, form, blood, s, z)).norm(), 1e-14 * R.norm());
       Eigen::MatrixXd K_fd(K.rows(), K.cols());
       const double h = 1e-6 * (1.0 + speed);
       for (int j = 0; j < z.size(); ++j) {
         Eigen::VectorXd zp = z, zm = z;
         zp[j] += h;
         zm[j] -= h;
-        K_fd.col(j) = (residual_at(kind, blood, s, zp) - residual_at(kind, blood, s, zm)) / (2 * h);
+        K_fd.col(j) = (residual_at(kind, form, blood, s, zp) - residual_at(kind, form, blood, s, zm)) / (2 * h);
       }
-      EXPECT_LT((K - K_fd).norm(), 1e-7 * K.norm()) << "kind " << static_cast<int>(kind) << ", speed " << speed;
+      EXPECT_LT((K - K_fd).norm(), 1e-7 * K.norm())
+          << "kind " << static_cast<int>(kind) << ", form " << static_cast<int>(form) << ", speed " << speed;
     }
   }
 }
@@ -135,7 +137,7 @@ TEST(FluidElement, GalerkinBlockIsSymmetricInVelocityAndPressure) {
   const FluidElementState s = random_element(2, 3, 1.0);
   Eigen::VectorXd R;
   Eigen::MatrixXd K;
-  navier_stokes_element(FluidElementKind::taylor_hood, {1.0, 0.1}, s, R, &K);
+  navier_stokes_element(FluidElementKind::taylor_hood, ConvectiveForm::skew_symmetric, {1.0, 0.1}, s, R, &K);
   EXPECT_LT((K.topRightCorner(30, 4) - K.bottomLeftCorner(4, 30).transpose()).norm(), 1e-14 * K.norm());
   EXPECT_EQ(K.bottomRightCorner(4, 4).norm(), 0.0);
 }
@@ -155,7 +157,9 @@ TEST(FluidElement, InvertedElementIsANumericalError) {
   FluidElementState s = random_element(1, 1, 1.0);
   s.x.col(3).z() = -1.0;
   Eigen::VectorXd R;
-  EXPECT_THROW(navier_stokes_element(FluidElementKind::stabilized_p1p1, {1.0, 0.1}, s, R, nullptr), NumericalError);
+  EXPECT_THROW(
+      navier_stokes_element(FluidElementKind::stabilized_p1p1, ConvectiveForm::advective, {1.0, 0.1}, s, R, nullptr),
+      NumericalError);
 }
 
 TEST(FluidBoundary, NormalIntegralsSumToTheAreaVectorAndWeighVerticesAsTheBasis) {
