@@ -47,4 +47,14 @@ void InertiaTerm::assemble(const MacroState& state, MacroAssembly& out) {
   }
 }
 
+void InertiaTerm::observe(const MacroState& state, std::vector<Observable>& out) const {
+  double kinetic = 0.0;
+  for (size_t k = 0; k < owned_.size(); ++k) {
+    const Eigen::VectorXd v = gather(state.v, dofs_[k]);  // node-major (x, y, z)
+    const Eigen::Map<const Eigen::Matrix3Xd> V(v.data(), 3, v.size() / 3);
+    kinetic += 0.5 * (V * mass_[k] * V.transpose()).trace();  // ½ Σ_ab M_ab v_a·v_b
+  }
+  out.push_back({"wall_kinetic_energy", kinetic});
+}
+
 }  // namespace fe2

@@ -12,6 +12,8 @@ class InertiaTerm final : public MacroTerm {
   std::string name() const override { return "inertia"; }
   void declare(MacroSystem& system) override;
   void assemble(const MacroState& state, MacroAssembly& out) override;
+  /// wall_kinetic_energy: ½ u̇ᵀ M u̇ (the wall's share of a coupled energy balance).
+  void observe(const MacroState& state, std::vector<Observable>& out) const override;
   /// The element's scalar mass matrix (n x n, ρ∫N_a N_b).
   const Eigen::MatrixXd& element_mass(int k) const { return mass_[k]; }
 
