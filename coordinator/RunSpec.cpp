@@ -347,6 +347,8 @@ void read_newton(SpecNode n, RunSpec& spec) {
                     ? MacroSolverOptions::Refresh::adaptive
                     : MacroSolverOptions::Refresh::every_iteration;
     o.gmres_rtol = m.number("gmres_rtol");
+    o.forcing = m.choice("gmres_forcing") == "eisenstat_walker" ? MacroSolverOptions::Forcing::eisenstat_walker
+                                                          : MacroSolverOptions::Forcing::constant;
     o.max_gmres_iterations = m.integer("max_gmres_iterations");
     m.finish();
   }

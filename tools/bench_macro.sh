@@ -3,17 +3,18 @@
 # per Newton iteration, the factorization of S̄, a solve with the kept factor and the
 # assembly, on 1, 2 and 4 coordinators (every rank a coordinator; with more ranks than
 # cores they share them, so the busiest coordinator's CPU is the figure, not wall time).
-#   tools/bench_macro.sh [COORDINATORS="1 2 4"] [OUT=out/bench_macro]
+#   tools/bench_macro.sh [COORDINATORS="1 2 4"] [OUT=out/bench_macro] [SPEC=configs/lv-macro-paper-size.json]
 # Then `fe2heart farm-sim RUN --macro-from OUT/c2` puts these macro costs under a run's units.
 set -euo pipefail
 top=$(cd "$(dirname "$0")/.." && pwd)
 coordinators=${1:-"1 2 4"}
 out=${2:-$top/out/bench_macro}
+spec=${3:-$top/configs/lv-macro-paper-size.json}
 export OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 bin=$top/build/tools/fe2heart
 for c in $coordinators; do
-  mpirun -np "$c" "$bin" run "$top/configs/lv-macro-paper-size.json" --out "$out/c$c" --coordinators "$c" \
+  mpirun -np "$c" "$bin" run "$spec" --out "$out/c$c" --coordinators "$c" \
     --overwrite --log-level warn
   "$bin" trace summary "$out/c$c" --json > "$out/c$c/trace_summary.json"
 done

@@ -390,7 +390,13 @@ Schema make_run_spec_schema() {
                                             "every_iteration: factor S̄ at every Newton iteration; adaptive: keep the "
                                             "factor as GMRES preconditioner across iterations and steps")},
                          {"gmres_rtol", number(1e-12, Range{0.0, 1e-3, true, true},
-                                               "‖b − S̄x‖ / ‖b‖ GMRES reaches with a kept factor")},
+                                               "‖b − S̄x‖ / ‖b‖ GMRES reaches with a kept factor (with "
+                                               "gmres_forcing eisenstat_walker: the floor of η_k)")},
+                         {"gmres_forcing", choice("constant", {"constant", "eisenstat_walker"},
+                                            "how far GMRES with a kept factor solves: constant, to gmres_rtol; "
+                                            "eisenstat_walker, to the inexact-Newton forcing term η_k = "
+                                            "0.9(‖R̃_k‖/‖R̃_k−1‖)², safeguarded, in [gmres_rtol, 0.1] "
+                                            "(loose far from the solution, tight near it)")},
                          {"max_gmres_iterations", integer(10, Range::closed(1, 500),
                                                           "a solve that needs more refactors for the next one")}})}})},
        {"circulation", circulation_schema()},

@@ -4,6 +4,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace fe2 {
 
 MacroSolver::MacroSolver(const proto::Group& group, int n, MacroSolverOptions options)
@@ -16,10 +19,35 @@ void MacroSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
   have_factor_ = false;
 }
 
+namespace {
+// Eisenstat & Walker (1996), choice 2, and the cap on η.
+constexpr double ew_gamma = 0.9, ew_alpha = 2.0, ew_eta_max = 0.1;
+}  // namespace
+
+double MacroSolver::relative_tolerance(double b_norm) {
+  if (options_.forcing == MacroSolverOptions::Forcing::constant) return options_.gmres_rtol;
+  double eta = ew_eta_max;  // the first solve, or a residual that grew (a new step)
+  if (last_b_norm_ > 0.0 && b_norm < last_b_norm_) {
+    eta = ew_gamma * std::pow(b_norm / last_b_norm_, ew_alpha);
+    // Safeguard: η may not drop faster than the residual has been converging.
+    if (const double floor = ew_gamma * std::pow(last_eta_, ew_alpha); floor > 0.1) eta = std::max(eta, floor);
+  }
+  eta = std::clamp(eta, options_.gmres_rtol, ew_eta_max);
+  last_b_norm_ = b_norm;
+  last_eta_ = eta;
+  return eta;
+}
+
 void MacroSolver::solve(const std::vector<double>& values, std::vector<double>& rhs) {
   if (options_.refresh == MacroSolverOptions::Refresh::adaptive && have_factor_ &&
       solve_with_kept_factor(values, rhs))
     return;
+  if (options_.forcing == MacroSolverOptions::Forcing::eisenstat_walker && !have_factor_) {
+    // A direct solve: record ‖b‖ (rank 0's, sent to all) for the next η.
+    double b_norm = group_.rank() == 0 ? Eigen::Map<const Vec>(rhs.data(), mumps_.size()).norm() : 0.0;
+    group_.bcast(&b_norm, 1, 0);
+    relative_tolerance(b_norm);
+  }
   have_factor_ = false;  // a failed factorization leaves none to keep
   mumps_.factorize(values);
   have_factor_ = true;
@@ -46,7 +74,7 @@ bool MacroSolver::solve_with_kept_factor(const std::vector<double>& values, std:
     z = Eigen::Map<const Vec>(buffer.data(), n);
   };
   Vec x = Vec::Zero(n);
-  const double tol = options_.gmres_rtol * b.norm();
+  const double tol = relative_tolerance(b.norm()) * b.norm();
   // Twice the refactor threshold before giving up on the kept factor this time.
   const GmresResult g = gmres(A, Minv, b, x, tol, 2 * options_.max_gmres_iterations,
                               2 * options_.max_gmres_iterations);
