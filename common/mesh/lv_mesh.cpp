@@ -3,6 +3,7 @@
 #include "common/error.h"
 #include "common/mesh/kuhn_split.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -69,15 +70,19 @@ void check_params(const LvMeshParams& p) {
 
 // The wall in parameters: shell t ∈ [0, 1], fraction s ∈ [0, 1] of the way from the apex
 // to the base along the meridian, azimuth φ. The cavity continues it to t ∈ [-1, 0):
-// shells of semi-axes ((1 + t) r_s, r_l) down to the long axis at t = -1, all through the
-// endocardial apex and cut by the base plane at the same polar angle.
+// shells of semi-axes ((1 + t) r_s, r_l + t d) down to the long axis at t = -1, each with
+// an apex of its own on the axis, d above the last. Shells through one apex would meet the
+// endocardium tangentially there: the blood's apex elements would be slivers that the
+// beating wall's apex folds (docs/fluid.md). d is the shells' spacing at the equator
+// (r_s), less where the base plane is near: the axis keeps half its length below it.
 class WallMap {
  public:
-  explicit WallMap(const LvMeshParams& p) : p_(p) {}
+  explicit WallMap(const LvMeshParams& p)
+      : p_(p), apex_rise_(std::min(p.endo_short, 0.5 * (p.endo_long - std::abs(p.base_z)))) {}
 
   Vec3 operator()(double t, double s, double phi) const {
     const double a = t < 0 ? (1.0 + t) * p_.endo_short : p_.endo_short + t * (p_.epi_short - p_.endo_short);
-    const double c = t < 0 ? p_.endo_long : p_.endo_long + t * (p_.epi_long - p_.endo_long);
+    const double c = t < 0 ? p_.endo_long + t * apex_rise_ : p_.endo_long + t * (p_.epi_long - p_.endo_long);
     // Polar angle from the apex (-z) to where this shell meets the base plane.
     const double theta_base = std::acos(-p_.base_z / c);
     const double theta = s * theta_base;
@@ -89,6 +94,7 @@ class WallMap {
 
  private:
   LvMeshParams p_;
+  double apex_rise_;  ///< d: how far the axis's end lies above the endocardial apex
 };
 
 /// The base-cap triangles whose centroid lies in a ring's disc become that ring's face;
@@ -118,13 +124,14 @@ TetMesh make_lv_mesh(const LvMeshParams& p) {
   const WallMap map(p);
 
   // Nodes: the apex of each shell first (i), then rings j = 1..nl, azimuth k, shell i;
-  // then the cavity's: the axis point of each ring j, then its shells -nb < i < 0. The
-  // cavity's shells all share the endocardial apex.
+  // then the cavity's: the axis point of each ring j, then its shells -nb < i < 0, then
+  // the apices of its shells.
   const int wall_nodes = (nt + 1) * (1 + nc * nl);
+  const int cavity_apices = wall_nodes + nl * (1 + (nb - 1) * nc);
   const auto node_id = [&](const GridPoint& g) {
     const int i = g[0], k = g[1] % nc, j = g[2];
     if (i < 0) {
-      if (j == 0) return 0;
+      if (j == 0) return cavity_apices + (-i - 1);
       if (i == -nb) return wall_nodes + (j - 1);
       return wall_nodes + nl + (-i - 1) + (nb - 1) * (k + nc * (j - 1));
     }
@@ -137,10 +144,10 @@ TetMesh make_lv_mesh(const LvMeshParams& p) {
 
   TetMesh m;
   m.nodes.resize(static_cast<std::size_t>(wall_nodes) +
-                 (nb > 0 ? nl * (1 + static_cast<std::size_t>(nb - 1) * nc) : 0));
+                 (nb > 0 ? nl * (1 + static_cast<std::size_t>(nb - 1) * nc) + nb : 0));
   for (int j = 0; j <= nl; ++j)
     for (int k = 0; k < (j == 0 ? 1 : nc); ++k)
-      for (int i = j == 0 ? 0 : -nb; i <= nt; ++i) {
+      for (int i = -nb; i <= nt; ++i) {
         if (i < 0 && i == -nb && k > 0) continue;  // one node on the axis per ring
         const GridPoint g{i, k, j};
         const auto q = param(g);
@@ -205,14 +212,12 @@ TetMesh make_lv_mesh(const LvMeshParams& p) {
     const auto edge_end = [&](const GridPoint& g, const GridPoint& other) {
       auto q = param(g);
       if (g[2] == 0 || (nb > 0 && g[0] == -nb)) q[2] = param(other)[2];
-      if (g[2] == 0 && g[0] < 0) q[0] = 0.0;  // the cavity's apex is the endocardium's
       return q;
     };
     // Inside the cavity the edges are straight: its grid map (τ r_s sin θ, ...) is a
-    // product that collapses at the axis and at the shared apex (where every cavity shell
-    // leaves horizontally: three such edges would make det J = 0), and following it would
+    // product that collapses at the axis and at the shells' apices, and following it would
     // only twist the elements. Edges on the endocardium follow it, as the wall's do.
-    const auto inside_cavity = [](const GridPoint& g) { return g[0] < 0 && g[2] != 0; };
+    const auto inside_cavity = [](const GridPoint& g) { return g[0] < 0; };
     for (std::size_t e = 0; e < tet_grid.size(); ++e)
       for (const auto& [a, b] : kTetEdges) {
         const auto key = std::minmax(m.tets[e][a], m.tets[e][b]);

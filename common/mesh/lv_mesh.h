@@ -54,9 +54,11 @@ struct LvMeshParams {
 /// (naming the parameter, its value and what was expected) for bad parameters.
 ///
 /// With a cavity the grid continues inward from the endocardium: shells of semi-axes
-/// (τ·r_s, r_l), τ from 1 (the endocardium) down to 0 (the long axis, where each ring
-/// collapses to one node), all meeting at the endocardial apex, so every horizontal
-/// slice of the cavity is a polar grid and the base cap is flat. The same Kuhn split
+/// (τ·r_s, r_l − (1 − τ)·d), τ from 1 (the endocardium) down to 0 (the long axis, where
+/// each ring collapses to one node), each with its own apex on the axis, the last d =
+/// min(r_s, (r_l − |base_z|)/2) above the endocardial apex (shells through one apex
+/// would be tangent there and make slivers), so every horizontal slice of the cavity is
+/// a polar grid and the base cap is flat. The same Kuhn split
 /// makes the blood conform to the wall: they share the endocardium's nodes. Region 1
 /// `myocardium`, region 2 `blood`; `endo` is then the interface between them (normal
 /// into the blood); the cap of the cavity in the base plane is the face `base_cap`,

@@ -229,9 +229,9 @@ TEST(LvMesh, CavityConformsToTheWallOnSharedNodes) {
       if (m.region[e] == 1) kept.push_back(positions(m, e));
     ASSERT_TRUE(kept == wall_tets) << "the wall's tets changed";
     // Counts: the cavity's cells are 6 tets each, less the flat ones at the apex and the
-    // axis (apex cells: 2 left per cell, 1 on the axis; axis cells: 3 left).
+    // axis (apex cells: 3 left per cell, as the wall's, 2 on the axis; axis cells: 3 left).
     const int blood = static_cast<int>(std::count(m.region.begin(), m.region.end(), 2));
-    EXPECT_EQ(blood, nc * (nl - 1) * (6 * (nb - 1) + 3) + nc * (2 * (nb - 1) + 1));
+    EXPECT_EQ(blood, nc * (nl - 1) * (6 * (nb - 1) + 3) + nc * (3 * (nb - 1) + 2));
     // No two nodes at one point: the blood and the wall share the endocardium's nodes.
     std::vector<std::array<double, 3>> xs;
     for (const Vec3& x : m.nodes) xs.push_back({x.x(), x.y(), x.z()});
@@ -273,9 +273,10 @@ TEST(LvMesh, CavityConformsToTheWallOnSharedNodes) {
       }
     std::printf("order %d: %d blood tets, worst Jacobian ratio %.3f, worst shape %.3f\n", order, blood,
                 worst_ratio, worst_shape);
-    // The wall's worst is 0.27 here; the blood's are the tets on the strongly curved
-    // endocardium next to the apex (0.14).
-    EXPECT_GT(worst_ratio, 0.1);
+    // The wall's worst is 0.27 here. The blood's worst (0.29) are the tets on the strongly
+    // curved endocardium next to the apex; with every cavity shell through the endocardial
+    // apex they were slivers there (0.14), which the beating wall's apex folded.
+    EXPECT_GT(worst_ratio, 0.25);
     EXPECT_GT(worst_shape, 0.05);
   }
 }
