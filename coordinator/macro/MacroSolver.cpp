@@ -20,8 +20,10 @@ void MacroSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
 }
 
 namespace {
-// Eisenstat & Walker (1996), choice 2, and the cap on η.
-constexpr double ew_gamma = 0.9, ew_alpha = 2.0, ew_eta_max = 0.1;
+// Eisenstat & Walker (1996), choice 2, and the cap on η. The safeguard applies only while
+// its floor γ η_{k−1}^α is above their threshold 0.1 (the same number as the cap here, by
+// choice of the cap, not of the method).
+constexpr double ew_gamma = 0.9, ew_alpha = 2.0, ew_eta_max = 0.1, ew_safeguard_threshold = 0.1;
 }  // namespace
 
 double MacroSolver::relative_tolerance(double b_norm) {
@@ -30,7 +32,8 @@ double MacroSolver::relative_tolerance(double b_norm) {
   if (last_b_norm_ > 0.0 && b_norm < last_b_norm_) {
     eta = ew_gamma * std::pow(b_norm / last_b_norm_, ew_alpha);
     // Safeguard: η may not drop faster than the residual has been converging.
-    if (const double floor = ew_gamma * std::pow(last_eta_, ew_alpha); floor > 0.1) eta = std::max(eta, floor);
+    if (const double floor = ew_gamma * std::pow(last_eta_, ew_alpha); floor > ew_safeguard_threshold)
+      eta = std::max(eta, floor);
   }
   eta = std::clamp(eta, options_.gmres_rtol, ew_eta_max);
   last_b_norm_ = b_norm;
