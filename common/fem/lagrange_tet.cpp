@@ -48,22 +48,30 @@ std::vector<Mat3> tet_shape_hessians(int order) {
   return H;
 }
 
-Eigen::VectorXd tet_shape_laplacians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
-                                     const Eigen::Matrix3Xd& gN) {
+std::vector<Mat3> tet_shape_physical_hessians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
+                                              const Eigen::Matrix3Xd& gN) {
   const Eigen::Index n = x.cols();
-  if (order == 1) return Eigen::VectorXd::Zero(n);
+  std::vector<Mat3> P(static_cast<size_t>(n), Mat3::Zero());
+  if (order == 1) return P;
   static const std::vector<Mat3> H = tet_shape_hessians(2);
   std::array<Mat3, 3> Hx;  // ∂²x_k/∂ξ∂ξ
   for (int k = 0; k < 3; ++k) {
     Hx[k].setZero();
     for (Eigen::Index c = 0; c < n; ++c) Hx[k] += x(k, c) * H[static_cast<size_t>(c)];
   }
-  Eigen::VectorXd lap(n);
   for (Eigen::Index a = 0; a < n; ++a) {
     Mat3 h = H[static_cast<size_t>(a)];
     for (int k = 0; k < 3; ++k) h -= gN(k, a) * Hx[k];
-    lap[a] = (Jinv.transpose() * h * Jinv).trace();
+    P[static_cast<size_t>(a)] = Jinv.transpose() * h * Jinv;
   }
+  return P;
+}
+
+Eigen::VectorXd tet_shape_laplacians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
+                                     const Eigen::Matrix3Xd& gN) {
+  const std::vector<Mat3> P = tet_shape_physical_hessians(order, x, Jinv, gN);
+  Eigen::VectorXd lap(x.cols());
+  for (Eigen::Index a = 0; a < x.cols(); ++a) lap[a] = P[static_cast<size_t>(a)].trace();
   return lap;
 }
 

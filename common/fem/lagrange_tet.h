@@ -27,6 +27,11 @@ std::vector<Mat3> tet_shape_hessians(int order);
 Eigen::VectorXd tet_shape_laplacians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
                                      const Eigen::Matrix3Xd& gN);
 
+/// The physical Hessians ∂²N_a/∂x∂x themselves (n symmetric 3 x 3; as above), whose
+/// traces are tet_shape_laplacians: what the laplacians' shape derivatives need.
+std::vector<Mat3> tet_shape_physical_hessians(int order, const Eigen::Matrix3Xd& x, const Mat3& Jinv,
+                                              const Eigen::Matrix3Xd& gN);
+
 /// Values (n) and gradients with respect to (λ1, λ2) (2 x n) of the order-1 (n = 3) or
 /// order-2 (n = 6) triangle basis.
 void triangle_shape(int order, const Vec3& bary, Eigen::VectorXd& N,

@@ -37,8 +37,17 @@
 //                    keeps the advective form (both are consistent).
 //
 // The tangent is consistent in v and p, the τ's dependence on c included (so Newton is
-// quadratic on convective flows). The mesh (x, v̂) is data here: the shape derivatives
-// (the tangent with respect to the mesh motion) belong to the coupled problem.
+// quadratic on convective flows).
+//
+// Shape derivatives (K_x, the tangent with respect to the node positions x, the mesh
+// velocity v̂ moving with x by the mesh scheme's ∂v̂/∂x): analytic, every term of every
+// kind. Moving node b along e_j (δx_b = e_j, δv̂_b = ∂v̂/∂x e_j) changes, with
+// g_b = ∇N_b and β_b = g_b·c + (∂v̂/∂x) N_b,
+//   δJ = e_j ⊗ ∂N_b/∂ξ           δ(dV) = dV ∂_j N_b        δ(∇N_a) = −g_b ∂_j N_a
+//   δ(∇v) = −(∂_j v) ⊗ g_b        δ((c·∇)N_a) = −β_b ∂_j N_a   δ(ρ(c·∇)v) = −ρ β_b ∂_j v
+//   δG = −(g_b ⊗ G_j + G_j ⊗ g_b)  (G_j = G e_j)
+//   δ(∂²N_a/∂x∂x) : I = −2 (∂²N_a/∂x∂x g_b)_j − ∂_j N_a ΔN_b      (curved P2 included)
+// and τ_M, τ_C, r_M through these (the derivations are beside the code).
 //
 // Element unknowns, in this order: velocity node-major (3a + i over the element's n
 // nodes, TetMesh::element_nodes order), then the pressure at its 4 vertices.
@@ -67,6 +76,7 @@ struct FluidElementState {
   Eigen::Matrix3Xd w;        ///< mesh velocity v̂ at the nodes
   Eigen::Vector4d p = Eigen::Vector4d::Zero();  ///< pressure at the vertices
   double dv_rate_dv = 0.0;   ///< ∂(∂v/∂t)/∂v of the scheme (0: steady)
+  double dw_dx = 0.0;        ///< ∂v̂/∂x of the mesh motion's scheme (for the shape derivatives)
   double dt = 0.0;           ///< the step, for τ_M (0: steady, no C_t/Δt² term)
   Vec3 body_force = Vec3::Zero();  ///< f, per unit mass
 };
@@ -75,9 +85,12 @@ struct FluidElementState {
 inline int fluid_element_dofs(FluidElementKind kind) { return fluid_velocity_order(kind) == 2 ? 34 : 16; }
 
 /// The element residual R (fluid_element_dofs) and, if `K` is not null, its tangent
-/// ∂R/∂(v, p). Throws fe2::NumericalError on an inverted or degenerate element.
+/// ∂R/∂(v, p); if `K_x` is not null, its shape derivatives dR/dx (fluid_element_dofs x 3n,
+/// column 3b + j: node b's x_j, the mesh velocity following by s.dw_dx). Throws
+/// fe2::NumericalError on an inverted or degenerate element.
 void navier_stokes_element(FluidElementKind kind, ConvectiveForm convection, const NewtonianFluid& fluid,
-                           const FluidElementState& s, Eigen::VectorXd& R, Eigen::MatrixXd* K);
+                           const FluidElementState& s, Eigen::VectorXd& R, Eigen::MatrixXd* K,
+                           Eigen::MatrixXd* K_x = nullptr);
 
 /// τ_M and τ_C of the stabilized element at convective velocity c (see above).
 struct StabilizationParameters {

@@ -86,47 +86,31 @@ void NavierStokesTerm::gather_element(size_t k, const MacroState& state, FluidEl
 
 void NavierStokesTerm::assemble(const MacroState& state, MacroAssembly& out) {
   const double dv_rate_dv = state.rate(*v_).dv_dx;
-  const double dd_dd = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d
   FluidElementState s;
   s.dv_rate_dv = dv_rate_dv;
-  s.dt = dv_rate_dv > 0.0 ? state.dt : 0.0;  // steady: no transient term in τ_M
+  s.dw_dx = d_ ? state.rate(*d_).dv_dx : 0.0;  // ∂ḋ/∂d: v̂ = ḋ follows x = X + d
+  s.dt = dv_rate_dv > 0.0 ? state.dt : 0.0;    // steady: no transient term in τ_M
   s.body_force = body_force_;
+  const bool shape = !mesh_dofs_.empty();
   Eigen::VectorXd R;
-  Eigen::MatrixXd K;
+  Eigen::MatrixXd K, K_x, KK;
   for (size_t k = 0; k < elements_.size(); ++k) {
     gather_element(k, state, s);
     try {
-      navier_stokes_element(kind_, convection_, fluid_, s, R, &K);
+      navier_stokes_element(kind_, convection_, fluid_, s, R, &K, shape ? &K_x : nullptr);
     } catch (const NumericalError& e) {
       throw NumericalError(fmt::format("{} (element {})", e.what(), elements_[k]));
     }
     out.add_internal(dofs_[k], R);
-    if (!mesh_dofs_.empty()) K = with_shape_derivatives(s, R, K, dd_dd);
-    out.add_tangent(local_[k], K);
-  }
-}
-
-Eigen::MatrixXd NavierStokesTerm::with_shape_derivatives(const FluidElementState& s, const Eigen::VectorXd& R,
-                                                         const Eigen::MatrixXd& K, double dd_dd) const {
-  const Eigen::Index n = s.x.cols(), rows = K.rows();
-  Eigen::MatrixXd KK(rows, K.cols() + 3 * n);
-  KK.leftCols(K.cols()) = K;
-  double size = 0.0;  // the element's largest vertex distance
-  for (int a = 0; a < 4; ++a)
-    for (int b = a + 1; b < 4; ++b) size = std::max(size, (s.x.col(a) - s.x.col(b)).norm());
-  const double h = 1e-7 * size;
-  FluidElementState moved = s;
-  Eigen::VectorXd Rh;
-  for (Eigen::Index b = 0; b < n; ++b)
-    for (int j = 0; j < 3; ++j) {
-      moved.x(j, b) += h;
-      moved.w(j, b) += dd_dd * h;
-      navier_stokes_element(kind_, convection_, fluid_, moved, Rh, nullptr);
-      KK.col(K.cols() + 3 * b + j) = (Rh - R) / h;
-      moved.x(j, b) = s.x(j, b);
-      moved.w(j, b) = s.w(j, b);
+    if (!shape) {
+      out.add_tangent(local_[k], K);
+      continue;
     }
-  return KK;
+    // Columns [v, p | d]: ∂R/∂d_b = ∂R/∂x_b + (∂ḋ/∂d) ∂R/∂v̂_b, which K_x holds (s.dw_dx).
+    KK.resize(K.rows(), K.cols() + K_x.cols());
+    KK << K, K_x;
+    out.add_tangent(local_[k], KK);
+  }
 }
 
 void NavierStokesTerm::observe(const MacroState& state, std::vector<Observable>& out) const {

@@ -9,9 +9,9 @@
 // and the mesh velocity v̂ = ḋ, so with d following the wall the tangent needs
 //   ∂R_e/∂d_b = ∂R_e/∂x_b + (∂ḋ/∂d) ∂R_e/∂v̂_b
 // (the blood's pressure on a moving wall is a follower load: without this block Newton
-// loses the load stiffness and, on a soft wall, diverges). Taken by forward differences
-// of the element residual, x_b and v̂_b moved together by h = 1e-7 of the element's
-// size: 3n residual evaluations per element, every term of every element kind included.
+// loses the load stiffness and, on a soft wall, diverges). Analytic, from the element
+// (navier_stokes_element's K_x, every term of every element kind): exact, where forward
+// differences were good to ~1e-7 and cost 3n residual evaluations per element.
 #include "common/fluid/navier_stokes_element.h"
 #include "common/mesh/TetMesh.h"
 #include "coordinator/macro/MacroTerm.h"
@@ -37,9 +37,6 @@ class NavierStokesTerm final : public MacroTerm {
  private:
   /// Element k's geometry and nodal fields at `state` (s's data; its scheme's scalars kept).
   void gather_element(size_t k, const MacroState& state, FluidElementState& s) const;
-  /// [K | ∂R/∂d] of an element at s, whose residual is R (see above).
-  Eigen::MatrixXd with_shape_derivatives(const FluidElementState& s, const Eigen::VectorXd& R, const Eigen::MatrixXd& K,
-                                         double dd_dd) const;
   const TetMesh& mesh_;
   std::vector<int> elements_;
   FluidElementKind kind_;
