@@ -85,6 +85,7 @@ void PointCoupling::evaluate(int step, int iteration, double t_new, double dt, c
       job.Zbar_dot = R_[k] * Zdot;
       job.Zbar_dot_coefficient = Zdot_coefficient;
       job.activation_time = activation_time_[k];
+      job.settle = settle_ ? 1 : 0;
     }
   } catch (const NumericalError& e) {
     why = e.what();
@@ -99,6 +100,7 @@ void PointCoupling::evaluate(int step, int iteration, double t_new, double dt, c
       why = fmt::format("point {}: non-finite stress, tangent or residual at t = {:.6g}", r.unit, t_new);
   }
   agree_on_failure(group_, why);
+  settle_ = false;  // every point is settled now (a failure above threw)
   for (size_t s = 0; s < owned_points_.size(); ++s) {
     const Mat9& R = R_[owned_points_[s]];
     responses_[s].A = R.transpose() * results_[s].A_hom * R;  // back to the global frame

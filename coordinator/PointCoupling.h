@@ -44,6 +44,10 @@ class PointCoupling {
                 const Eigen::VectorXd& v, bool field_rate, double Zdot_coefficient);
   /// The next iteration's jobs refactor every unit (a stalled Newton).
   void force_refresh(bool on) { force_refresh_ = on; }
+  /// The points start afresh under the restored macro state (--fresh-units): the next
+  /// evaluation asks each to settle at its Z̄ first (proto::JobInput::settle), and so
+  /// does every evaluation until one succeeds.
+  void settle_points() { settle_ = true; }
   bool refresh_forced() const { return force_refresh_; }
   CollectiveRefresh& collective() { return collective_; }
 
@@ -74,6 +78,7 @@ class PointCoupling {
   std::vector<PointResponse> responses_;
   /// Set when the coupled Newton stopped contracting with kept factors (stale χ, stale A_hom).
   bool force_refresh_ = false;
+  bool settle_ = false;
   /// unit.solver.refresh "collective": when all units of a model refactor together.
   CollectiveRefresh collective_;
 };

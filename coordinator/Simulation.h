@@ -123,6 +123,9 @@ class Simulation {
   void save_state(ByteWriter& w);
   /// Restarts: what save_state wrote. Before run(). @note Not collective.
   void restore_state(ByteReader& r);
+  /// After restore_state with fresh points (--fresh-units): they settle at the restored
+  /// Z̄ before their first Newton update (PointCoupling::settle_points).
+  void settle_fresh_points() { coupling_.settle_points(); }
 
   /// Adds a macro term (tests: manufactured body forces). Before the first run().
   void add_term(std::unique_ptr<MacroTerm> term);

@@ -23,6 +23,10 @@ struct JobInput {
   /// without a step): the point's tangent is 𝔸 = ∂Π/∂Z + c ∂Π/∂Ż (Material.h).
   double Zbar_dot_coefficient = 0.0;
   double activation_time = 0.0;   ///< when the point's cells are excited (s)
+  /// The point starts afresh under a finite Z̄ (a restart with --fresh-units): before
+  /// the job it is brought to equilibrium at this Z̄, quasi-statically from its committed
+  /// state and committed there, so that the job's Newton update starts from equilibrium.
+  uint8_t settle = 0;
 };
 
 enum class Refresh : uint8_t { reuse = 0, refresh = 1 };

@@ -64,6 +64,7 @@ void pack_job(ByteWriter& w, const JobInput& j) {
   w.put_raw(j.Zbar_dot.data(), 9 * sizeof(double));
   w.put(j.Zbar_dot_coefficient);
   w.put(j.activation_time);
+  w.put(j.settle);
 }
 
 JobInput unpack_job(ByteReader& r) {
@@ -79,6 +80,7 @@ JobInput unpack_job(ByteReader& r) {
   r.get_raw(j.Zbar_dot.data(), 9 * sizeof(double));
   j.Zbar_dot_coefficient = r.get<double>();
   j.activation_time = r.get<double>();
+  j.settle = r.get<uint8_t>();
   if (j.unit < 0 || j.iteration < 1 || !j.Zbar.allFinite() || !j.Zbar_dot.allFinite() ||
       !std::isfinite(j.Zbar_dot_coefficient) || !std::isfinite(j.activation_time))
     throw Error(fmt::format("{}: invalid job (unit {}, iteration {})", r.what(), j.unit, j.iteration));

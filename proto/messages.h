@@ -43,7 +43,7 @@ const char* name_of(Type t);
 /// Point-to-point tags; one per message type.
 constexpr int tag_of(Type t) { return 100 + static_cast<int>(t); }
 
-constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8;
+constexpr size_t kJobInputBytes = 3 * 4 + 2 * 8 + 2 + 18 * 8 + 2 * 8 + 1;
 constexpr size_t kJobOutputBytes = 4 + (81 + 9 + 9 + 3) * 8 + 4 + 1 + 4 * 8 + 1 + 8 + 8 + 4 + 1 + 2 * 8 + 1;
 constexpr size_t kJobCostBytes = 4 + 1 + 4 + 2 * 8 + 1 + 8 + 4 + 1 + 1;
 

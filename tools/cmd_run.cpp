@@ -54,14 +54,17 @@ Restart open_restart(const RunOptions& o, const RunSpec& spec) {
   } catch (const json::exception& e) {
     throw InputError(fmt::format("checkpoint '{}': its spec is not JSON ({})", r.file->path(), e.what()));
   }
-  const std::vector<std::string> keys = spec_differences(saved, spec.raw);
+  const std::vector<std::string> keys = spec_differences(saved, spec.raw, o.fresh_units);
   if (!keys.empty()) {
     std::string list;
     for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
     const std::string what = fmt::format("--restart '{}': spec '{}' differs from the one the checkpoint ran in {}",
                                          r.file->path(), o.spec, list);
     if (!o.force)
-      throw InputError(what + "; a restart may change only output, farm and title (--force continues anyway)");
+      throw InputError(what + (o.fresh_units ? "; a restart with --fresh-units may change only output, farm, title and the models' unit"
+                                             : "; a restart may change only output, farm and title (--fresh-units: also the "
+                                               "models' unit, whose points then start afresh)") +
+                       " (--force continues anyway)");
     r.notes.push_back(what + " (--force)");
   }
   if (h.steps > spec.steps)
@@ -279,7 +282,13 @@ int run(const RunOptions& o) {
   std::string input_error;
   try {
     spec = read_run_spec(spec_json(o), o.spec, nullptr, /*build_units=*/false);  // built below, if they fit
+    if (o.fresh_units && o.restart.empty())
+      throw InputError("--fresh-units: only with --restart (it keeps a checkpoint's macro state, the points start afresh)");
     if (rank == 0 && !o.restart.empty()) restart = open_restart(o, spec);
+    if (o.fresh_units && restart.in_place)
+      throw InputError(fmt::format("--fresh-units: --out '{}' is the checkpoint's own run; a restart with other units "
+                                   "writes its traces and series into another folder",
+                                   o.out));
     // Before anything is written; a restart continues in its own folder.
     if (rank == 0 && !restart.in_place)
       refuse_earlier_output(o.out, "an fe2heart run", earlier_run_files(o.out), o.overwrite);
@@ -361,16 +370,17 @@ int run(const RunOptions& o) {
     RunResult done;
     if (!o.restart.empty()) {
       TraceOffsets ignored;
-      done = restore_checkpoint(restart.file.get(), sim, points, coords, ignored);
+      done = restore_checkpoint(restart.file.get(), sim, points, coords, ignored, o.fresh_units);
       if (output) {
         output->resume(done, [&](int step) { return sim.is_output_step(step); });
         std::vector<std::pair<int, double>> steps;
         for (const StepRecord& r : done.history)
           if (sim.is_output_step(r.step)) steps.emplace_back(r.step + 1, r.time);
         if (restart.in_place) unit_output->resume(steps);
-        spdlog::info("restarted from {} (written by {} rank(s), {} coordinator(s)) after step {}, t = {:.6g}",
+        spdlog::info("restarted from {} (written by {} rank(s), {} coordinator(s)) after step {}, t = {:.6g}{}",
                      restart.file->path(), restart.file->header().ranks, restart.file->header().coordinators,
-                     done.steps, restart.file->header().time);
+                     done.steps, restart.file->header().time,
+                     o.fresh_units ? "; the macro state only, every point fresh (--fresh-units)" : "");
       }
     }
     const double t0 = wall_seconds();
@@ -384,6 +394,7 @@ int run(const RunOptions& o) {
     if (o.restart.empty()) write_fields(0, 0.0);
     int stopped_by = 0;
     bool stop_checkpointed = false;  // at the step boundary, by the step hook
+    const int first_step = done.steps;  // --stop-after-steps counts from here
     // Before every Newton iteration: a signal on any coordinator stops all of them, even
     // inside a step that keeps cutting back (its committed state is checkpointed below).
     sim.set_stop_poll([&] {
@@ -408,14 +419,17 @@ int run(const RunOptions& o) {
           if (output) output->write_progress(sim, r, wall_seconds() - t0);
           // A signal on any coordinator stops all of them at this boundary, after a checkpoint.
           const int signal = coords.allreduce_max(stop_signal());
-          if (signal != 0 || (spec.checkpoint_every > 0 && (r.step + 1) % spec.checkpoint_every == 0)) {
+          // The same step count on every coordinator: no collective needed to agree.
+          const bool window_done = o.stop_after_steps > 0 && r.step + 1 - first_step >= o.stop_after_steps;
+          if (signal != 0 || window_done ||
+              (spec.checkpoint_every > 0 && (r.step + 1) % spec.checkpoint_every == 0)) {
             const CheckpointWritten w =
                 write_checkpoint(checkpoint_path(o.out), spec, world.size(), sim, points, coords,
                                  output ? output->progress() : RunResult{}, trace ? trace->offsets() : TraceOffsets{});
             spdlog::info("checkpoint after step {}: {} ({}, {:.2f} s)", r.step + 1, w.path,
                          format_bytes(static_cast<double>(w.bytes)), w.seconds);
           }
-          if (signal != 0) {
+          if (signal != 0 || window_done) {
             stopped_by = signal;
             stop_checkpointed = true;
             sim.request_stop();
@@ -458,8 +472,10 @@ int run(const RunOptions& o) {
     }
     if (result.stopped) {
       const char* name = stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGUSR1 ? "SIGUSR1" : stopped_by == SIGINT ? "SIGINT" : nullptr;
-      spdlog::info("stopped by signal {} after step {} (t = {:.6g}); checkpoint: {}", name ? name : std::to_string(stopped_by),
-                   result.steps, result.history.empty() ? 0.0 : result.history.back().time, checkpoint_path(o.out));
+      const std::string by = stopped_by == 0 ? fmt::format("--stop-after-steps {}", o.stop_after_steps)
+                                             : fmt::format("signal {}", name ? name : std::to_string(stopped_by));
+      spdlog::info("stopped by {} after step {} (t = {:.6g}); checkpoint: {}", by, result.steps,
+                   result.history.empty() ? 0.0 : result.history.back().time, checkpoint_path(o.out));
       spdlog::info("continue with: fe2heart run {} --out {} --restart {}", o.spec, o.out, o.out);
       return 0;
     }

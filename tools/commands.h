@@ -21,6 +21,8 @@ struct RunOptions {
   std::string restart;     ///< a checkpoint file or a run folder to continue from
   bool force = false;      ///< restart although the spec changed beyond output/farm
   int beats = 0;           ///< > 0: replaces the spec's time.beats (a spec of whole beats)
+  bool fresh_units = false;  ///< --restart the macro state only: the points start afresh
+  int stop_after_steps = 0;  ///< > 0: stop after this many steps of this run, checkpointed
 };
 int run(const RunOptions& o);
 /// `memory_limit` as in RunOptions.

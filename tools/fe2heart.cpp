@@ -52,6 +52,15 @@ int main(int argc, char** argv) {
                     "run this many beats (replaces time.beats of a spec of whole beats; with "
                     "time.periodic_tolerance it stops earlier once periodic)")
       ->check(CLI::Range(1, 10000));
+  c_run->add_flag("--fresh-units", run.fresh_units,
+                  "with --restart: take the checkpoint's macro state only; every integration point starts "
+                  "from the initial state of this spec's model (its units may differ from the checkpoint's "
+                  "under models.<name>.unit: e.g. a beat's costly phase with units of the paper's size, "
+                  "from a checkpoint of a cheap beat)");
+  c_run->add_option("--stop-after-steps", run.stop_after_steps,
+                    "stop after this many steps of this run, with a checkpoint (as SIGUSR1 would): a "
+                    "window of a beat for a benchmark")
+      ->check(CLI::Range(1, 10000000));
   c_run->add_flag("--force", run.force,
                   "--restart although the spec differs from the checkpoint's outside output, farm and "
                   "title (e.g. a later time.t_end, other tolerances); the state must still fit the spec "

@@ -1,5 +1,7 @@
 #include "worker/MicroUnit.h"
 
+#include "worker/unit_equilibrium.h"
+
 #include "common/cpu_timer.h"
 #include "common/error.h"
 #include "worker/abs_products.h"
@@ -320,10 +322,42 @@ GmresResult MicroUnit::step1(double rtol) {
   return gmres(A, M, b, dw1_, rtol * bnorm, o.gmres_restart, o.gmres_max_iterations, solve_floor());
 }
 
+void MicroUnit::settle(const proto::JobInput& job) {
+  // Continuation in Z̄ from the committed state to the job's, each stage a quasi-static
+  // equilibrium (Δt = 0: no rates, the cells' state does not advance) that is committed;
+  // a stage that fails is halved. A fresh unit thrown at a finite Z̄ in one Newton update
+  // inverts its cells (Step 1 linearizes about w = 0, the affine guess).
+  constexpr double kRtol = 1e-8, kSmallest = 1.0 / 64.0;
+  constexpr int kIterations = 20;
+  const Vec9 from = Zbar_committed_, to = job.Zbar;
+  double reached = 0.0, stage = 0.25;
+  proto::JobInput q;
+  q.step = job.step;
+  q.time = job.time;
+  q.activation_time = job.activation_time;
+  while (reached < 1.0) {
+    const double s = std::min(1.0, reached + stage);
+    q.Zbar = from + s * (to - from);
+    try {
+      equilibrate(*this, q, kRtol, kIterations);
+      reached = s;
+      stage = std::min(2.0 * stage, 0.5);
+    } catch (const NumericalError& e) {
+      rollback_step();
+      stage *= 0.5;
+      if (stage < kSmallest)
+        throw NumericalError(fmt::format("unit {}: settling afresh at Z̄ (|Z̄| = {:.3g}) failed at {:.0f} % of the "
+                                         "way: {}",
+                                         job.unit, to.norm(), 100.0 * reached, e.what()));
+    }
+  }
+}
+
 proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   proto::JobOutput out;
   out.unit = in.unit;
   const double t_start = thread_cpu_seconds();
+  if (in.settle) settle(in);  // its cost is the job's
 
   // Accept the previous iteration: w += δw₁ − χ(Z̄_new − Z̄_old)   (Eq. 11)
   if (in.apply_update && has_pending_) {

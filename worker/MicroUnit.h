@@ -70,6 +70,10 @@ class MicroUnit final : public PointModel {
   const Vec& w() const { return w_; }
   /// Z̄ at the last assembled state.
   const Vec9& Zbar() const { return Zbar_; }
+  /// Brings the unit from its committed state to equilibrium at `job`'s Z̄ and commits
+  /// there (proto::JobInput::settle): see MicroUnit.cpp. Throws NumericalError if it
+  /// cannot.
+  void settle(const proto::JobInput& job);
   void set_w(const Vec& w) { w_ = w; }
   const Vec& pending_dw1() const { return dw1_; }
   const Eigen::MatrixXd& chi() const { return chi_; }

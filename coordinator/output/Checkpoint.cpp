@@ -10,6 +10,16 @@ namespace fe2 {
 
 namespace {
 
+/// A JSON pointer at or under a model's micro unit: /models/<name>/unit[/...].
+bool is_unit_key(const std::string& pointer) {
+  const std::string models = "/models/";
+  if (pointer.rfind(models, 0) != 0) return false;
+  const size_t slash = pointer.find('/', models.size());
+  if (slash == std::string::npos) return false;
+  const std::string rest = pointer.substr(slash);
+  return rest == "/unit" || rest.rfind("/unit/", 0) == 0;
+}
+
 template <class T>
 void put_vector(ByteWriter& w, const std::vector<T>& v) {
   w.put_array(v.data(), v.size());
@@ -211,7 +221,7 @@ CheckpointWritten write_checkpoint(const std::string& path, const RunSpec& spec,
 }
 
 RunResult restore_checkpoint(const CheckpointFile* file, Simulation& sim, PointEvaluator& points,
-                             const proto::Group& coords, TraceOffsets& trace) {
+                             const proto::Group& coords, TraceOffsets& trace, bool fresh_points) {
   Bytes macro, run;
   std::string what = "checkpoint";
   if (coords.rank() == 0) {
@@ -225,6 +235,10 @@ RunResult restore_checkpoint(const CheckpointFile* file, Simulation& sim, PointE
   sim.restore_state(r);
   if (!r.at_end()) throw InputError(fmt::format("{}: {} bytes after the macro state", what, r.remaining()));
   const RunResult done = unpack_run_section(run, trace, what + " (run section)");
+  if (fresh_points) {  // the points stay as built, in their initial state, and settle first
+    sim.settle_fresh_points();
+    return done;
+  }
   std::vector<int> units;
   if (file) {
     units = file->units();
@@ -241,12 +255,13 @@ RunResult restore_checkpoint(const CheckpointFile* file, Simulation& sim, PointE
   return done;
 }
 
-std::vector<std::string> spec_differences(const nlohmann::json& saved, const nlohmann::json& now) {
+std::vector<std::string> spec_differences(const nlohmann::json& saved, const nlohmann::json& now, bool fresh_points) {
   std::vector<std::string> keys;
   for (const auto& op : nlohmann::json::diff(saved, now)) {
     const std::string p = op.at("path").get<std::string>();
     auto under = [&](const std::string& top) { return p == top || p.rfind(top + "/", 0) == 0; };
     if (under("/output") || under("/farm") || under("/title")) continue;
+    if (fresh_points && is_unit_key(p)) continue;
     keys.push_back(p);
   }
   std::sort(keys.begin(), keys.end());

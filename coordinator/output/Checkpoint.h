@@ -44,13 +44,17 @@ CheckpointWritten write_checkpoint(const std::string& path, const RunSpec& spec,
                                    const TraceOffsets& trace);
 
 /// Restores `file` (opened and checked on rank 0, null elsewhere) into `sim` and the
-/// points; returns the steps behind, and the trace offsets on rank 0.
+/// points; returns the steps behind, and the trace offsets on rank 0. With
+/// `fresh_points` only the macro state is restored: the points keep the initial state
+/// they were built in (`fe2heart run --fresh-units`: a beat's phase with other units).
 /// @note Collective like write_checkpoint.
 RunResult restore_checkpoint(const CheckpointFile* file, Simulation& sim, PointEvaluator& points,
-                             const proto::Group& coords, TraceOffsets& trace);
+                             const proto::Group& coords, TraceOffsets& trace, bool fresh_points = false);
 
 /// Where the spec a checkpoint ran differs from `now` outside what a restart may change
-/// (output, farm, title): JSON pointers, sorted.
-std::vector<std::string> spec_differences(const nlohmann::json& saved, const nlohmann::json& now);
+/// (output, farm, title; with `fresh_points` also a model's `unit`, whose points start
+/// afresh): JSON pointers, sorted.
+std::vector<std::string> spec_differences(const nlohmann::json& saved, const nlohmann::json& now,
+                                          bool fresh_points = false);
 
 }  // namespace fe2
