@@ -181,7 +181,8 @@ void JobPool::wait_for_a_result(double seconds) {
   });
 }
 
-void JobPool::check_alive(double limit) const {
+void JobPool::check_alive(double limit, double stall_timeout) const {
+  if (stall_timeout < 0.0) stall_timeout = limit;
   std::lock_guard<std::mutex> lock(shared_->mutex);
   const double now = wall_seconds();
   for (size_t k = 0; k < shared_->slots.size(); ++k) {
@@ -190,7 +191,7 @@ void JobPool::check_alive(double limit) const {
       throw StallError(fmt::format(
           "the job of unit {} (step {}, iteration {}) has run for {:.0f} s on helper thread {} "
           "(farm.stall_timeout {:.0f} s): the thread is frozen or the job slower than the limit",
-          s.unit, s.step, s.iteration, now - s.since, k + 1, limit));
+          s.unit, s.step, s.iteration, now - s.since, k + 1, stall_timeout));
   }
 }
 

@@ -53,8 +53,9 @@ class JobPool {
   /// Waits until a finished result (or a helper's error) is there to collect, or
   /// `seconds` pass.
   void wait_for_a_result(double seconds);
-  /// Throws StallError if a helper's job has run longer than `limit` wall seconds.
-  void check_alive(double limit) const;
+  /// Throws StallError if a helper's job has run longer than `limit` wall seconds; the
+  /// message names `stall_timeout` (default: the limit itself) as the liveness limit.
+  void check_alive(double limit, double stall_timeout = -1.0) const;
 
   /// Accumulated over the jobs since reset(): thread CPU and wall seconds of the jobs,
   /// and how many ran (on every thread).

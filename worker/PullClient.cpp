@@ -57,6 +57,10 @@ bool PullClient::finished() const {
   return std::all_of(sources_.begin(), sources_.end(), [](const Source& s) { return s.done; });
 }
 
+void PullClient::check_helpers(double limit) const {
+  if (pool_.threads() > 1) pool_.check_alive(limit, proto::stall_timeout());
+}
+
 bool PullClient::poll(bool block) {
   if (finished()) return true;
   // Results the pool's threads finished go with the next pull.
@@ -65,7 +69,7 @@ bool PullClient::poll(bool block) {
     pool_.collect(static_cast<int>(k), sources_[k].results);
     progress_ += static_cast<long long>(sources_[k].results.size() - before);
   }
-  if (pool_.threads() > 1) pool_.check_alive(proto::stall_timeout());
+  check_helpers(proto::stall_timeout());
   // Ask ahead (with the results so far): while half a batch is still queued, or, once
   // the coordinator has no more jobs, with the last results when none is queued or running.
   const size_t ahead = static_cast<size_t>(batch_ / 2);

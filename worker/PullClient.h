@@ -35,6 +35,10 @@ class PullClient {
   /// a polling loop that has nothing else to do. Returns false at once when no helper
   /// has a job (the caller then naps its own way).
   bool wait_for_helpers(double seconds);
+  /// Throws StallError naming a helper thread whose job has run longer than `limit`
+  /// (JobPool::check_alive): a coordinator that also works asks this before it blames
+  /// a silent rank, since that rank may be itself.
+  void check_helpers(double limit) const;
   /// This iteration's account (valid after finished()).
   proto::WorkerStats stats() const;
   void count_migrations(int in, int out) { migrations_in_ += in, migrations_out_ += out; }

@@ -198,9 +198,15 @@ void FarmEvaluator::serve_until_done() {
       last_progress = wall_seconds();
       continue;
     }
-    if (wall_seconds() - last_progress > proto::stall_timeout())  // liveness limit
+    if (wall_seconds() - last_progress > proto::stall_timeout()) {  // liveness limit
+      // This rank's own frozen helper is the likelier culprit, and the one to name: its
+      // job may have started just after the last progress, its own limit not yet up
+      // (a race the frozen-thread test lost now and then). A job running for half the
+      // limit while nothing arrived for all of it is the suspect.
+      if (client_) client_->check_helpers(0.5 * proto::stall_timeout());
       throw StallError(fmt::format("nothing arrived for {:.0f} s (farm.stall_timeout); {}",
                                    proto::stall_timeout(), server_.describe_outstanding()));
+    }
     // Nothing happened: block on whichever side is left, or nap briefly when both
     // wait for messages (MPI cannot probe two tags at once).
     if (server_.finished()) {
