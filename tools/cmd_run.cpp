@@ -272,6 +272,9 @@ int run(const RunOptions& o) {
   proto::Transport transport(MPI_COMM_WORLD);
   const proto::Group world(MPI_COMM_WORLD);
   const int rank = world.rank();
+  // Rank 0 alone looks for the stop file (one stat per iteration, not one per rank);
+  // the coordinators' reduction of stop_request() tells the others.
+  if (rank == 0) watch_stop_file(o.stop_file);
   // Every rank reads its own input (a cluster may lack a shared file system, so one
   // node can miss a file the others see). Before any other collective, all ranks agree
   // that input is OK: a rank that failed prints its own error, and every rank exits 2.
@@ -398,7 +401,7 @@ int run(const RunOptions& o) {
     // Before every Newton iteration: a signal on any coordinator stops all of them, even
     // inside a step that keeps cutting back (its committed state is checkpointed below).
     sim.set_stop_poll([&] {
-      const int signal = coords.allreduce_max(stop_signal());
+      const int signal = coords.allreduce_max(stop_request());
       if (signal != 0) stopped_by = signal;
       return signal != 0;
     });
@@ -418,7 +421,7 @@ int run(const RunOptions& o) {
           if (sim.is_output_step(r.step)) write_fields(r.step + 1, r.time);
           if (output) output->write_progress(sim, r, wall_seconds() - t0);
           // A signal on any coordinator stops all of them at this boundary, after a checkpoint.
-          const int signal = coords.allreduce_max(stop_signal());
+          const int signal = coords.allreduce_max(stop_request());
           // The same step count on every coordinator: no collective needed to agree.
           const bool window_done = o.stop_after_steps > 0 && r.step + 1 - first_step >= o.stop_after_steps;
           if (signal != 0 || window_done ||
@@ -472,8 +475,9 @@ int run(const RunOptions& o) {
     }
     if (result.stopped) {
       const char* name = stopped_by == SIGTERM ? "SIGTERM" : stopped_by == SIGUSR1 ? "SIGUSR1" : stopped_by == SIGINT ? "SIGINT" : nullptr;
-      const std::string by = stopped_by == 0 ? fmt::format("--stop-after-steps {}", o.stop_after_steps)
-                                             : fmt::format("signal {}", name ? name : std::to_string(stopped_by));
+      const std::string by = stopped_by == 0                ? fmt::format("--stop-after-steps {}", o.stop_after_steps)
+                             : stopped_by == kStopFileFound ? fmt::format("the stop file {}", o.stop_file)
+                                                            : fmt::format("signal {}", name ? name : std::to_string(stopped_by));
       spdlog::info("stopped by {} after step {} (t = {:.6g}); checkpoint: {}", by, result.steps,
                    result.history.empty() ? 0.0 : result.history.back().time, checkpoint_path(o.out));
       spdlog::info("continue with: fe2heart run {} --out {} --restart {}", o.spec, o.out, o.out);

@@ -182,9 +182,10 @@ std::string last_error_line(const std::string& log) {
 /// (Ctrl-C), SIGHUP (a lost terminal) or SIGQUIT. The handler only records it; run_child
 /// passes it on to the running variant (which has its own process group, so nothing
 /// reaches it but through the study):
-///   first request:       SIGUSR1, sent again every 2 s until the variant ends. `fe2heart
-///                        run` writes a checkpoint at the next step boundary and stops
-///                        (mpirun forwards SIGUSR1 to the ranks); --resume continues it.
+///   first request:       the variant's stop file (`run --stop-file`) is written. `fe2heart
+///                        run` writes a checkpoint at the next step boundary and stops;
+///                        --resume continues it. Not SIGUSR1: mpirun forwards it at once,
+///                        and a rank between its exec and main dies of it.
 ///   a second, >= 5 s later: SIGTERM (mpirun ends its ranks at once).
 ///   a third,  >= 5 s later: SIGKILL to the variant's process group.
 /// Requests closer than 5 s to the first count as one: `timeout` signals the study and
@@ -206,28 +207,21 @@ class StopSignalForwarding {
     a.sa_handler = record_stop_signal;
     sigemptyset(&a.sa_mask);
     for (size_t i = 0; i < std::size(kStopSignals); ++i) sigaction(kStopSignals[i], &a, &old_[i]);
-    // Variants start with SIGUSR1 ignored (exec keeps SIG_IGN) until they handle it
-    // (tools/stop_signal.h); one that came before is sent again.
-    struct sigaction ignore {};
-    ignore.sa_handler = SIG_IGN;
-    sigemptyset(&ignore.sa_mask);
-    sigaction(SIGUSR1, &ignore, &old_usr1_);
   }
   ~StopSignalForwarding() {
     for (size_t i = 0; i < std::size(kStopSignals); ++i) sigaction(kStopSignals[i], &old_[i], nullptr);
-    sigaction(SIGUSR1, &old_usr1_, nullptr);
   }
   StopSignalForwarding(const StopSignalForwarding&) = delete;
   StopSignalForwarding& operator=(const StopSignalForwarding&) = delete;
 
  private:
-  struct sigaction old_[std::size(kStopSignals)] {}, old_usr1_ {};
+  struct sigaction old_[std::size(kStopSignals)] {};
 };
 
 /// Passes the study's stop requests on to one running variant, escalating as above.
 class StopRelay {
  public:
-  explicit StopRelay(pid_t child) : child_(child) {}
+  StopRelay(pid_t child, std::string stop_file) : child_(child), stop_file_(std::move(stop_file)) {}
   /// Called while the child is alive and not yet reaped (so its pid is its own).
   void poll() {
     using namespace std::chrono;
@@ -243,19 +237,20 @@ class StopRelay {
       }
       seen_ = count;
       send(now);
-    } else if (level_ > 0 && level_ < 3 && now - sent_ >= seconds(2)) {
-      send(now);  // it may have come before the child could act on it
+    } else if (level_ == 2 && now - sent_ >= seconds(2)) {
+      send(now);  // mpirun may not have been able to act on it yet
     }
   }
 
  private:
   void send(std::chrono::steady_clock::time_point now) {
-    if (level_ == 1) kill(child_, SIGUSR1);
+    if (level_ == 1) std::ofstream(stop_file_) << "stop requested by fe2heart study\n";
     if (level_ == 2) kill(child_, SIGTERM);
     if (level_ == 3) kill(-child_, SIGKILL);
     sent_ = now;
   }
   pid_t child_;
+  std::string stop_file_;
   int seen_ = 0, level_ = 0;
   std::chrono::steady_clock::time_point first_{}, sent_{};
 };
@@ -265,7 +260,9 @@ constexpr int kNotStarted = -1;
 
 /// Runs argv with stdout and stderr to `log`; wall seconds and the child's rusage
 /// (wait4: its CPU time and that of the processes it waited for, e.g. mpirun's ranks).
-int run_child(const std::vector<std::string>& argv, const std::string& log, bool append, VariantResult& r) {
+/// A stop request is passed on through `stop_file` (the variant's `run --stop-file`).
+int run_child(const std::vector<std::string>& argv, const std::string& log, bool append, const std::string& stop_file,
+              VariantResult& r) {
   std::vector<std::string> env_strings;
   for (char** e = environ; *e; ++e)
     if (!launcher_variable(*e)) env_strings.emplace_back(*e);
@@ -313,7 +310,7 @@ int run_child(const std::vector<std::string>& argv, const std::string& log, bool
   int status = 0;
   struct rusage ru {};
   // Polled rather than blocking, so that stop requests are passed on as they come.
-  StopRelay relay(pid);
+  StopRelay relay(pid, stop_file);
   for (;;) {
     const pid_t done = wait4(pid, &status, WNOHANG, &ru);
     if (done == pid) break;
@@ -450,7 +447,12 @@ int study(const StudyOptions& o) {
       if (o.resume) spdlog::info("variant '{}' runs: {}", v.name, not_kept[i]);
       argv.push_back("--overwrite");
     }
-    const int exit_code = run_child(argv, (d / "run.log").string(), /*append=*/r.continued, r);
+    // Outside the run folder, which --overwrite clears; no earlier request may linger.
+    const fs::path stop_file = d / "stop";
+    fs::remove(stop_file, ec);
+    argv.insert(argv.end(), {"--stop-file", stop_file.string()});
+    const int exit_code = run_child(argv, (d / "run.log").string(), /*append=*/r.continued, stop_file.string(), r);
+    fs::remove(stop_file, ec);
     if (exit_code == kNotStarted) {  // a stop came first: the variant stays as it was
       r = before;
       break;

@@ -23,6 +23,7 @@ struct RunOptions {
   int beats = 0;           ///< > 0: replaces the spec's time.beats (a spec of whole beats)
   bool fresh_units = false;  ///< --restart the macro state only: the points start afresh
   int stop_after_steps = 0;  ///< > 0: stop after this many steps of this run, checkpointed
+  std::string stop_file;     ///< once this file exists: stop as on SIGUSR1 (checkpointed)
 };
 int run(const RunOptions& o);
 /// `memory_limit` as in RunOptions.

@@ -61,6 +61,10 @@ int main(int argc, char** argv) {
                     "stop after this many steps of this run, with a checkpoint (as SIGUSR1 would): a "
                     "window of a beat for a benchmark")
       ->check(CLI::Range(1, 10000000));
+  c_run->add_option("--stop-file", run.stop_file,
+                    "stop as on SIGUSR1 (a checkpoint, exit 0) once this file exists; polled before every "
+                    "Newton iteration. Unlike a signal it cannot come too early: `fe2heart study` stops "
+                    "its variants this way");
   c_run->add_flag("--force", run.force,
                   "--restart although the spec differs from the checkpoint's outside output, farm and "
                   "title (e.g. a later time.t_end, other tolerances); the state must still fit the spec "

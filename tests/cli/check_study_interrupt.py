@@ -6,7 +6,9 @@ at a checkpoint, and --resume continues that variant from there.
                              [--early] [--killed]
 
 --np N: ranks per variant (default 1); with N > 1 each variant runs under mpirun, which
-  must be stopped with SIGUSR1 (forwarded to the ranks), not SIGTERM (which ends them).
+  the study stops through the variant's stop file (`run --stop-file`), not with a signal
+  (SIGTERM ends the ranks; a SIGUSR1 that mpirun forwards to a rank still between its
+  exec and main kills it).
 --sbatch SCRIPT (configs/slurm/study.sbatch): the study is started, signalled and
   resumed through that script, run by bash outside Slurm, as a batch job would.
 --early: the signal comes as soon as the second variant has started (its ranks still
