@@ -311,7 +311,7 @@ ResidualFloor MicroUnit::solve_floor() const {
   return [this](const Vec& x) { return kSolveFloorFactor * std::numeric_limits<double>::epsilon() * abs_times(sys_.K, x).norm(); };
 }
 
-GmresResult MicroUnit::step1(double rtol) {
+GmresResult MicroUnit::step1(double rtol, int max_iterations) {
   const auto& o = model_->options();
   const Vec b = -sys_.r;
   dw1_.setZero();
@@ -319,7 +319,8 @@ GmresResult MicroUnit::step1(double rtol) {
   if (bnorm == 0.0) return {0, 0.0, true};
   const LinearOp A = K_operator();
   const LinearOp M = preconditioner();
-  return gmres(A, M, b, dw1_, rtol * bnorm, o.gmres_restart, o.gmres_max_iterations, solve_floor());
+  return gmres(A, M, b, dw1_, rtol * bnorm, o.gmres_restart, max_iterations < 0 ? o.gmres_max_iterations : max_iterations,
+               solve_floor());
 }
 
 void MicroUnit::settle(const proto::JobInput& job) {
@@ -402,9 +403,9 @@ proto::JobOutput MicroUnit::iterate(const proto::JobInput& in) {
   GmresResult res;
   {
     ScopedCpuTimer t(out.cpu_solve);  // Fig. 6 (c2)
-    res = step1(rtol);
+    res = step1(rtol, refreshed ? -1 : policy_.stale_gmres_budget(model_->options().gmres_max_iterations));
   }
-  if (!res.converged && !refreshed) {  // a stale preconditioner gave up: refresh once
+  if (!res.converged && !refreshed) {  // a stale preconditioner gave up (or cost a refresh): refresh once
     {
       ScopedCpuTimer t(out.cpu_refresh);
       refresh();

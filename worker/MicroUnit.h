@@ -103,7 +103,9 @@ class MicroUnit final : public PointModel {
   void refresh();
   void rebuild_factor();
   /// Step 1 (Fig. 6 c2): K δw₁ = −r to ‖K δw₁ + r‖ ≤ rtol ‖r‖.
-  GmresResult step1(double rtol);
+  /// Step 1 (Fig. 6 (c2)): K δw₁ = −r by GMRES on the kept factor, at most `max_iterations`
+  /// (< 0: the model's gmres_max_iterations).
+  GmresResult step1(double rtol, int max_iterations = -1);
   /// ‖r‖ below which the residual is round-off of the assembly (JobOutput::r_floor).
   double residual_floor();
   /// y = K x for GMRES (its first product also keeps |K|𝟙 for residual_floor()).

@@ -3,6 +3,7 @@
 #include "common/error.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fe2 {
 
@@ -19,6 +20,14 @@ bool RefreshPolicy::due(int step, int iteration) const {
     case Kind::collective: return false;  // the job's force flag carries the coordinators' decision
   }
   return true;
+}
+
+int RefreshPolicy::stale_gmres_budget(int max_iterations) const {
+  const bool rental = kind_ == Kind::adaptive || kind_ == Kind::collective;
+  if (!rental || factor_flops_ <= 0.0 || iteration_flops() <= 0.0) return max_iterations;
+  const double budget = std::ceil(refresh_flops() / iteration_flops());
+  return static_cast<int>(std::clamp(budget, static_cast<double>(std::min(kMinStaleGmresBudget, max_iterations)),
+                                     static_cast<double>(max_iterations)));
 }
 
 void RefreshPolicy::refreshed(double factor_flops, double solve_flops) {

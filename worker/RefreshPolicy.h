@@ -17,6 +17,13 @@
 //                    one unit per worker a unit refreshing alone stalls every other worker
 //                    for a factorization; refreshing together costs the farm one.
 //
+// Within one job the rental policies rent too: Step 1 GMRES on a stale factor gives up
+// once its iterations have cost as much as a refresh (stale_gmres_budget), and the unit
+// refreshes and solves again. A job thus costs at most about two refreshes, where a
+// factor far from the current K could spin to gmres_max_iterations first (measured on
+// 3k-DOF binary16 units in the contraction: 500 iterations, 7 refreshes' worth, on the
+// farm's critical path).
+//
 // A forced refresh (job flag) and a unit without a factor refresh regardless; that is
 // MicroUnit's business, not the policy's.
 #include "common/bytes.h"
@@ -46,6 +53,15 @@ class RefreshPolicy {
   }
   /// Adaptive: GMRES iterations beyond one per job since the last refresh.
   double excess_iterations() const { return excess_iterations_; }
+  /// The Step 1 GMRES iterations a job may spend on a stale factor before it refreshes:
+  /// refresh_flops / iteration_flops for the rental policies (at least
+  /// kMinStaleGmresBudget, at most `max_iterations`); `max_iterations` for the others
+  /// (fixed keeps the paper's factor until GMRES fails) and before the first refresh.
+  int stale_gmres_budget(int max_iterations) const;
+  /// A floor for units whose refresh is cheap (a few hundred DOF): the budget must not
+  /// turn every job with a dozen iterations into a refresh.
+  static constexpr int kMinStaleGmresBudget = 20;
+
   /// Adaptive cost model (flops): one more GMRES iteration, and one refresh.
   double iteration_flops() const { return solve_flops_ + matvec_flops_; }
   double refresh_flops() const { return factor_flops_ + 9.0 * solve_flops_; }

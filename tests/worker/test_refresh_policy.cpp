@@ -65,6 +65,27 @@ TEST(RefreshPolicy, AdaptiveRefreshesExactlyWhenExcessKrylovWorkPaysForARefresh)
   EXPECT_FALSE(q.due(0, 4)) << "a refresh pays the debt";
 }
 
+// Within a job: the rental policies let a stale Step 1 spend one refresh's worth of
+// GMRES iterations (refresh / iteration flops, rounded up), between the floor for cheap
+// refreshes and the model's limit; fixed and every_iteration keep the limit.
+TEST(RefreshPolicy, RentalPoliciesBudgetAStaleSolveAtOneRefresh) {
+  for (Kind kind : {Kind::adaptive, Kind::collective}) {
+    RefreshPolicy p(kind, 10, 200.0);
+    EXPECT_EQ(p.stale_gmres_budget(500), 500) << "no refresh yet: no cost to compare with";
+    p.refreshed(100000.0, 1000.0);  // 109000 flops against 1200 an iteration: 90.8
+    EXPECT_EQ(p.stale_gmres_budget(500), 91);
+    EXPECT_EQ(p.stale_gmres_budget(60), 60);
+    p.refreshed(10000.0, 1000.0);  // 15.8: the floor
+    EXPECT_EQ(p.stale_gmres_budget(500), RefreshPolicy::kMinStaleGmresBudget);
+    EXPECT_EQ(p.stale_gmres_budget(8), 8);
+  }
+  for (Kind kind : {Kind::fixed, Kind::every_iteration}) {
+    RefreshPolicy p(kind, 10, 200.0);
+    p.refreshed(100000.0, 1000.0);
+    EXPECT_EQ(p.stale_gmres_budget(500), 500);
+  }
+}
+
 // A unit that never needs more than one GMRES iteration never refreshes again.
 TEST(RefreshPolicy, AdaptiveNeverRefreshesWhileTheFactorIsExact) {
   RefreshPolicy p(Kind::adaptive, 10, 200.0);
