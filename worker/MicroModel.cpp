@@ -65,6 +65,7 @@ MicroSolverOptions MicroSolverOptions::from_spec(SpecNode s) {
     s.fail("gmres_forcing_max", fmt::format("at least gmres_rtol ({:g})", o.gmres_rtol));
   o.gmres_restart = s.integer("gmres_restart");
   o.gmres_max_iterations = s.integer("gmres_max_iterations");
+  o.solve_flop_cost = s.number("solve_flop_cost");
   const std::string precision = s.choice("precision");
   o.single_precision = precision != "double";
   o.half_storage = precision == "half";

@@ -40,6 +40,10 @@ struct MicroSolverOptions {
   double newton_rtol = 1e-8;
   int gmres_restart = 50;
   int gmres_max_iterations = 500;
+  /// What a flop of a solve or a product with K costs in flops of a factorization (which
+  /// runs BLAS-3, several times faster per flop): weighs a stale Step 1's iterations
+  /// against a refresh in the rental policies' budget within a job (RefreshPolicy).
+  double solve_flop_cost = 4.0;
   /// The factor in single precision, used only as the GMRES preconditioner: the answer
   /// stays double, the factor costs half the memory. The LLᵀ kind uses the supernodal
   /// float LLᵀ (worker/FloatCholeskyFactor.h) unless single_factor_mumps; LU is MUMPS.

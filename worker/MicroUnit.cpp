@@ -35,7 +35,7 @@ MicroUnit::MicroUnit(MicroModelPtr model)
     : model_(std::move(model)),
       factor_kind_(model_->initial_factor_kind()),
       policy_(model_->options().refresh, model_->options().N_t,
-              2.0 * static_cast<double>(model_->pattern().nonZeros())),
+              2.0 * static_cast<double>(model_->pattern().nonZeros()), model_->options().solve_flop_cost),
       policy_committed_(policy_) {
   const int n = model_->num_dofs();
   w_ = Vec::Zero(n);

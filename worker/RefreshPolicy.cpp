@@ -7,9 +7,10 @@
 
 namespace fe2 {
 
-RefreshPolicy::RefreshPolicy(Kind kind, int N_t, double matvec_flops)
-    : kind_(kind), N_t_(N_t), matvec_flops_(matvec_flops) {
+RefreshPolicy::RefreshPolicy(Kind kind, int N_t, double matvec_flops, double solve_flop_cost)
+    : kind_(kind), N_t_(N_t), matvec_flops_(matvec_flops), solve_flop_cost_(solve_flop_cost) {
   FE2_CHECK(N_t >= 1, "refresh policy: N_t = {}, expected >= 1", N_t);
+  FE2_CHECK(solve_flop_cost >= 1.0, "refresh policy: solve_flop_cost = {}, expected >= 1", solve_flop_cost);
 }
 
 bool RefreshPolicy::due(int step, int iteration) const {
@@ -25,7 +26,7 @@ bool RefreshPolicy::due(int step, int iteration) const {
 int RefreshPolicy::stale_gmres_budget(int max_iterations) const {
   const bool rental = kind_ == Kind::adaptive || kind_ == Kind::collective;
   if (!rental || factor_flops_ <= 0.0 || iteration_flops() <= 0.0) return max_iterations;
-  const double budget = std::ceil(refresh_flops() / iteration_flops());
+  const double budget = std::ceil(refresh_flops() / (solve_flop_cost_ * iteration_flops()));
   return static_cast<int>(std::clamp(budget, static_cast<double>(std::min(kMinStaleGmresBudget, max_iterations)),
                                      static_cast<double>(max_iterations)));
 }

@@ -36,7 +36,9 @@ class RefreshPolicy {
   using Kind = MicroSolverOptions::Refresh;
 
   /// `matvec_flops`: one product with K (2 nnz), part of each GMRES iteration.
-  RefreshPolicy(Kind kind, int N_t, double matvec_flops);
+  /// `solve_flop_cost`: a flop of a solve in flops of a factorization (the budget within
+  /// a job; MicroSolverOptions::solve_flop_cost).
+  RefreshPolicy(Kind kind, int N_t, double matvec_flops, double solve_flop_cost = 1.0);
 
   /// Whether a job at (step, iteration) refreshes under this policy, now.
   bool due(int step, int iteration) const;
@@ -54,7 +56,7 @@ class RefreshPolicy {
   /// Adaptive: GMRES iterations beyond one per job since the last refresh.
   double excess_iterations() const { return excess_iterations_; }
   /// The Step 1 GMRES iterations a job may spend on a stale factor before it refreshes:
-  /// refresh_flops / iteration_flops for the rental policies (at least
+  /// refresh_flops / (solve_flop_cost · iteration_flops) for the rental policies (at least
   /// kMinStaleGmresBudget, at most `max_iterations`); `max_iterations` for the others
   /// (fixed keeps the paper's factor until GMRES fails) and before the first refresh.
   int stale_gmres_budget(int max_iterations) const;
@@ -75,6 +77,7 @@ class RefreshPolicy {
   Kind kind_;
   int N_t_;
   double matvec_flops_;
+  double solve_flop_cost_;
   double excess_iterations_ = 0.0;
   double factor_flops_ = 0.0;  ///< of the last refresh
   double solve_flops_ = 0.0;

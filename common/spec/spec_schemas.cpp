@@ -136,6 +136,13 @@ Schema micro_unit() {
                     {"gmres_restart", integer(50, Range::closed(1, 1000), "GMRES restart length")},
                     {"gmres_max_iterations",
                      integer(500, Range::closed(1, 1e6), "GMRES iteration cap")},
+                    {"solve_flop_cost",
+                     number(4.0, Range::closed(1.0, 100.0),
+                            "what a flop of a solve costs in flops of a factorization (BLAS-3 runs "
+                            "faster per flop): adaptive and collective let a stale Step 1 spend "
+                            "refresh flops / (this × flops of one GMRES iteration) iterations "
+                            "before the unit refreshes within the job. `fe2heart bench unit` "
+                            "measures it: (factor_solve_ms / solve Gflop) / (factorize ms / factor_Gflop)")},
                     {"precision",
                      choice("double", {"double", "single", "half"},
                             "precision of the factor of K (the GMRES preconditioner): double "

@@ -66,8 +66,8 @@ TEST(RefreshPolicy, AdaptiveRefreshesExactlyWhenExcessKrylovWorkPaysForARefresh)
 }
 
 // Within a job: the rental policies let a stale Step 1 spend one refresh's worth of
-// GMRES iterations (refresh / iteration flops, rounded up), between the floor for cheap
-// refreshes and the model's limit; fixed and every_iteration keep the limit.
+// GMRES iterations (refresh / (weight · iteration) flops, rounded up), between the floor
+// for cheap refreshes and the model's limit; fixed and every_iteration keep the limit.
 TEST(RefreshPolicy, RentalPoliciesBudgetAStaleSolveAtOneRefresh) {
   for (Kind kind : {Kind::adaptive, Kind::collective}) {
     RefreshPolicy p(kind, 10, 200.0);
@@ -79,6 +79,11 @@ TEST(RefreshPolicy, RentalPoliciesBudgetAStaleSolveAtOneRefresh) {
     EXPECT_EQ(p.stale_gmres_budget(500), RefreshPolicy::kMinStaleGmresBudget);
     EXPECT_EQ(p.stale_gmres_budget(8), 8);
   }
+  // A solve's flop at four of a factorization's: 109000 / (4 · 1200) = 22.7.
+  RefreshPolicy weighted(Kind::collective, 10, 200.0, 4.0);
+  weighted.refreshed(100000.0, 1000.0);
+  EXPECT_EQ(weighted.stale_gmres_budget(500), 23);
+  EXPECT_EQ(weighted.refresh_flops(), 109000.0) << "the weight is the budget's alone";
   for (Kind kind : {Kind::fixed, Kind::every_iteration}) {
     RefreshPolicy p(kind, 10, 200.0);
     p.refreshed(100000.0, 1000.0);
