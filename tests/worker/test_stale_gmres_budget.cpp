@@ -10,7 +10,6 @@ namespace fe2 {
 namespace {
 
 using Refresh = MicroSolverOptions::Refresh;
-using test::gradient;
 
 struct StaleJob {
   proto::JobOutput out;
@@ -28,16 +27,11 @@ StaleJob job_far_from_the_factor(Refresh policy, double jump) {
   opt.gmres_max_iterations = 500;
   opt.gmres_restart = 3;  // restarted often, a stale factor costs many iterations
   MicroUnit unit(test::two_cell_model(opt));
-  const Vec9 Z = gradient({0.04, 0.01, 0.0, 0.0, -0.015, 0.0, 0.01, 0.0, 0.005});
-  proto::JobInput in;
-  in.step = 0;
-  in.iteration = 1;
-  in.Zbar = Z;
-  unit.iterate(in);
+  proto::JobInput in = test::factor_at_step_zero(unit);
   StaleJob j;
   j.budget = unit.policy().stale_gmres_budget(opt.gmres_max_iterations);
   in.step = 1;
-  in.Zbar = jump * Z;
+  in.Zbar = jump * in.Zbar;
   j.out = unit.iterate(in);
   return j;
 }

@@ -13,7 +13,6 @@
 namespace fe2 {
 namespace {
 
-using test::gradient;
 using test::rel_diff;
 
 TEST(Step1Forcing, ToleranceFollowsTheResidualWithinItsBounds) {
@@ -62,14 +61,9 @@ NewtonSolve solve_on_a_stale_factor(MicroSolverOptions::Forcing forcing, double 
   opt.gmres_rtol = 1e-12;
   opt.gmres_forcing = forcing;
   MicroUnit unit(test::two_cell_model(opt));
-  const Vec9 Z = gradient({0.04, 0.01, 0.0, 0.0, -0.015, 0.0, 0.01, 0.0, 0.005});
-  proto::JobInput in;
-  in.step = 0;
-  in.iteration = 1;
-  in.Zbar = Z;
-  unit.iterate(in);  // the refresh: K and χ at Z, w = 0
+  proto::JobInput in = test::factor_at_step_zero(unit);  // the refresh: K and χ at Z, w = 0
   in.step = 1;
-  in.Zbar = 3.0 * Z;
+  in.Zbar = 3.0 * in.Zbar;
   NewtonSolve s;
   for (in.iteration = 1; in.iteration <= 20; ++in.iteration) {
     in.apply_update = in.iteration > 1;

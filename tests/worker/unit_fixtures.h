@@ -37,6 +37,17 @@ inline Vec9 gradient(std::initializer_list<double> v) {
   return z;
 }
 
+/// A unit's first job, step 0 iteration 1 at a moderate Z̄: a refresh (K and χ there, w = 0)
+/// that later jobs at other Z̄ find as their stale factor. Returns that job's input.
+inline proto::JobInput factor_at_step_zero(MicroUnit& unit) {
+  proto::JobInput in;
+  in.step = 0;
+  in.iteration = 1;
+  in.Zbar = gradient({0.04, 0.01, 0.0, 0.0, -0.015, 0.0, 0.01, 0.0, 0.005});
+  unit.iterate(in);
+  return in;
+}
+
 /// Relative Frobenius difference.
 template <class A, class B>
 double rel_diff(const A& a, const B& b) {
