@@ -2,6 +2,7 @@
 #include "common/error.h"
 #include "common/spec/SpecNode.h"
 #include "common/spec/spec_schemas.h"
+#include "coordinator/farm/beat_projection.h"
 #include "coordinator/farm/farm_sim.h"
 #include "coordinator/farm/trace_analysis.h"
 #include "tools/commands.h"
@@ -11,6 +12,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <optional>
 
 namespace fe2::cli {
 
@@ -100,14 +103,104 @@ FarmOptions farm_options_of_run(const FarmSimOptions& o) {
   return f;
 }
 
+/// A run's summary.json: the circulation phase of each step in its history.
+std::map<int, std::string> phases_of_run(const std::string& dir, int* beats = nullptr) {
+  const std::string file = dir + "/summary.json";
+  if (!std::filesystem::exists(file))
+    throw InputError(fmt::format("farm-sim --beat: '{}' not found; expected the summary.json of a run", file));
+  const json s = read_json_file(file);
+  std::map<int, std::string> phase;
+  if (s.is_object() && s.contains("history") && s["history"].is_array())
+    for (const json& h : s["history"]) {
+      if (!h.contains("step") || !h.contains("circulation") || !h["circulation"].is_object() ||
+          h["circulation"].empty())
+        continue;
+      const json& first = h["circulation"].begin().value();
+      if (first.contains("phase")) phase[h["step"].get<int>()] = first["phase"].get<std::string>();
+    }
+  if (phase.empty())
+    throw InputError(fmt::format("farm-sim --beat: '{}' has no circulation phases in its history; expected a "
+                                 "run with a circulation (a beat)",
+                                 file));
+  if (beats) {
+    *beats = 1;
+    if (s.contains("circulation") && s["circulation"].contains("beats_run"))
+      *beats = std::max(1, s["circulation"]["beats_run"].get<int>());
+  }
+  return phase;
+}
+
+/// One simulated farm's projection of the beat.
+struct BeatRow {
+  int workers = 0, units_per_worker = 0;
+  BeatProjection beat;
+};
+
+/// What a beat costs on the simulated farm: the replay's predicted Entire per step where
+/// it ran, the full beat's relative cost per step elsewhere (beat_projection.h).
+struct BeatContext {
+  std::vector<StepCost> beat;
+  int beats = 1;
+  std::map<int, std::string> replay_phase;
+};
+
+BeatContext beat_context(const FarmSimOptions& o, const FarmSimInput& replay) {
+  if (replay.step.size() != replay.macro.size())
+    throw InputError(fmt::format("farm-sim --beat: the traces of '{}' do not record their steps (an older run)", o.dir));
+  BeatContext b;
+  b.replay_phase = phases_of_run(o.dir);
+  const FarmSimInput full = farm_sim_input(read_traces(o.beat));
+  if (full.step.size() != full.macro.size())
+    throw InputError(fmt::format("farm-sim --beat: the traces of '{}' do not record their steps (an older run)", o.beat));
+  std::vector<double> cost(full.macro.size());
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    cost[i] = full.macro[i];
+    for (double c : full.cost[i]) cost[i] += c;
+  }
+  b.beat = step_costs(full.step, cost, phases_of_run(o.beat, &b.beats), o.beat);
+  return b;
+}
+
+void print_beat_projection(const FarmSimOptions& o, const BeatContext& b,
+                           const std::vector<BeatRow>& rows, int coordinators) {
+  const BeatProjection& first = rows.front().beat;
+  fmt::print("\none beat of {} ({} beat(s) run; inflation left out), on the simulated farm: a phase the replay "
+             "ran takes its predicted Entire per step (replayed); any other, the beat's own cost per step there "
+             "(units' CPU + macro) x rho = the replay's time per unit of the beat's cost over the phases both ran "
+             "(extrapolated: it assumes the replayed units cost the same multiple of the beat's in every phase).\n",
+             o.beat, b.beats);
+  for (const PhaseProjection& ph : first.phases)
+    fmt::print("  {:<24} {:>5.1f} steps per beat, the beat's cost {:.4g} s per step; {}\n", ph.phase, ph.steps_per_beat,
+               ph.beat_cost,
+               ph.replay_steps >= kMinReplayedSteps
+                   ? fmt::format("replayed ({} steps)", ph.replay_steps)
+                   : fmt::format("extrapolated (the replay ran {} step{} of it)", ph.replay_steps,
+                                 ph.replay_steps == 1 ? "" : "s"));
+  fmt::print("\n{:>8} {:>6} |", "workers", "u/w");
+  for (const PhaseProjection& ph : first.phases) fmt::print(" {:>12.12}", ph.phase);
+  fmt::print(" | {:>6} {:>10} {:>12}\n", "rho", "beat s", "core-hours");
+  fmt::print("{:>8} {:>6} |", "", "");
+  for (std::size_t i = 0; i < first.phases.size(); ++i) fmt::print(" {:>12}", "s per step");
+  fmt::print(" |\n");
+  for (const BeatRow& r : rows) {
+    fmt::print("{:>8} {:>6} |", r.workers, r.units_per_worker);
+    for (const PhaseProjection& ph : r.beat.phases) fmt::print(" {:>12.4g}", ph.seconds_per_step);
+    fmt::print(" | {:>6.3g} {:>10.4g} {:>12.4g}\n", r.beat.ratio, r.beat.seconds,
+               (r.workers + coordinators) * r.beat.seconds / 3600.0);
+  }
+  fmt::print("core-hours: (workers + {} coordinator(s)) x the beat's seconds.\n", coordinators);
+}
+
 }  // namespace
 
 int farm_sim(const FarmSimOptions& o) {
   const TraceData t = read_traces(o.dir);
   FarmSimInput in = farm_sim_input(t);
+  int coordinators = macro_cost(t).coordinators;
   if (!o.macro_from.empty()) {
     const MacroCost c = macro_cost(read_traces(o.macro_from));
     replace_macro(in, c);
+    coordinators = c.coordinators;
     fmt::print("macro costs from {} ({} coordinator(s), {}): {:.4g} s per factorizing iteration, {:.4g} s "
                "per kept-factor one, {:.4g} s per converged check\n",
                o.macro_from, c.coordinators, c.cpu_recorded ? "busiest coordinator's CPU" : "wall time",
@@ -126,6 +219,9 @@ int farm_sim(const FarmSimOptions& o) {
              f.tolerated_imbalance, f.min_gain, o.macro_scale);
   fmt::print("efficiency 'vs W/4': the paper's strong scaling (same units on W/4 workers as the "
              "base, e.g. 1536 -> 6144);\n'vs balance': Σ work / W over the predicted time.\n\n");
+  std::optional<BeatContext> beat;
+  if (!o.beat.empty()) beat = beat_context(o, in);
+  std::vector<BeatRow> projections;
   fmt::print("{:>8} {:>6} {:>10} | {:>12} {:>12} | {:>9} {:>9} | {:>9} {:>9} | {:>6}\n", "workers",
              "u/w", "units", "Micro+L+C s", "Entire s", "micro/W4", "entire/W4", "micro/bal",
              "ent./bal", "moves");
@@ -142,7 +238,14 @@ int farm_sim(const FarmSimOptions& o) {
       fmt::print("{:>8} {:>6} {:>10} | {:>12.4g} {:>12.4g} | {:>9.3f} {:>9.3f} | {:>9.3f} {:>9.3f} | {:>6}\n",
                  W, k, U, r.micro, r.entire, micro_rel, entire_rel, (r.work / W) / r.micro,
                  (r.work / W + macro_total) / r.entire, r.migrations);
+      if (beat) {
+        std::vector<double> entire(r.makespan.size());
+        for (std::size_t i = 0; i < entire.size(); ++i) entire[i] = r.makespan[i] + in.macro[i] * o.macro_scale;
+        projections.push_back({W, k, project_beat(beat->beat, beat->beats,
+                                                  step_costs(in.step, entire, beat->replay_phase, o.dir))});
+      }
     }
+  if (beat && !projections.empty()) print_beat_projection(o, *beat, projections, coordinators);
   fmt::print("\npaper (T2K, 6144 cores, one unit each, vs 1536): entire 0.893, micro+L+C 0.918\n");
   return 0;
 }

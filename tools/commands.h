@@ -91,6 +91,9 @@ struct FarmSimOptions {
   /// Another run's folder: its macro costs per Newton iteration (by kind: factorizing,
   /// kept-factor, no solve) replace the replayed run's (a macro of another size).
   std::string macro_from;
+  /// A full beat of the same heart (e.g. with cheaper units): extrapolate the replay to
+  /// one beat's seconds and core-hours over its phases (coordinator/farm/beat_projection.h).
+  std::string beat;
   long long max_units = 3000000;
 };
 int farm_sim(const FarmSimOptions& o);

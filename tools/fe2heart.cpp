@@ -179,6 +179,9 @@ int main(int argc, char** argv) {
                     "a run folder whose macro costs replace the replayed run's, iteration by iteration "
                     "of the same kind (factorizing, kept-factor, no solve): the busiest coordinator's CPU "
                     "medians (e.g. a macro-law run at the paper's macro size)");
+  c_sim->add_option("--beat", sim.beat,
+                    "a run folder with a whole beat of the same heart (e.g. its cheap units): the replay "
+                    "extrapolated to one beat's seconds and core-hours over the beat's circulation phases");
   c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
 
   fe2::cli::StudyOptions study;
