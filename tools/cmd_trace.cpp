@@ -161,30 +161,28 @@ BeatContext beat_context(const FarmSimOptions& o, const FarmSimInput& replay) {
   return b;
 }
 
-void print_beat_projection(const FarmSimOptions& o, const BeatContext& b,
-                           const std::vector<BeatRow>& rows, int coordinators) {
+void print_beat_projection(const FarmSimOptions& o, const BeatContext& b, const std::vector<BeatRow>& rows,
+                           int coordinators) {
   const BeatProjection& first = rows.front().beat;
-  fmt::print("\none beat of {} ({} beat(s) run; inflation left out), on the simulated farm: a phase the replay "
-             "ran takes its predicted Entire per step (replayed); any other, the beat's own cost per step there "
-             "(units' CPU + macro) x rho = the replay's time per unit of the beat's cost over the phases both ran "
-             "(extrapolated: it assumes the replayed units cost the same multiple of the beat's in every phase).\n",
-             o.beat, b.beats);
-  for (const PhaseProjection& ph : first.phases)
-    fmt::print("  {:<24} {:>5.1f} steps per beat, the beat's cost {:.4g} s per step; {}\n", ph.phase, ph.steps_per_beat,
-               ph.beat_cost,
-               ph.replay_steps >= kMinReplayedSteps
-                   ? fmt::format("replayed ({} steps)", ph.replay_steps)
-                   : fmt::format("extrapolated (the replay ran {} step{} of it)", ph.replay_steps,
-                                 ph.replay_steps == 1 ? "" : "s"));
-  fmt::print("\n{:>8} {:>6} |", "workers", "u/w");
-  for (const PhaseProjection& ph : first.phases) fmt::print(" {:>12.12}", ph.phase);
-  fmt::print(" | {:>6} {:>10} {:>12}\n", "rho", "beat s", "core-hours");
-  fmt::print("{:>8} {:>6} |", "", "");
-  for (std::size_t i = 0; i < first.phases.size(); ++i) fmt::print(" {:>12}", "s per step");
-  fmt::print(" |\n");
+  fmt::print("\none beat of {} ({} beat(s) run; inflation left out), on the simulated farm, by segment (consecutive "
+             "steps of one phase): a segment the replay ran ({}+ steps) takes its predicted Entire per step "
+             "(replayed); any other, the beat's own cost per step there (units' CPU + macro) x rho, the replay's "
+             "time per unit of the beat's cost on the steps both ran (extrapolated: it assumes the replayed units "
+             "cost the same multiple of the beat's everywhere).\n",
+             o.beat, b.beats, kMinReplayedSteps);
+  for (std::size_t i = 0; i < first.segments.size(); ++i) {
+    const SegmentProjection& g = first.segments[i];
+    fmt::print("  {:>2} {:<24} steps {:>4}-{:<4} {:>5.1f} per beat, the beat's cost {:.4g} s per step; {}\n", i + 1,
+               g.phase, g.first_step, g.last_step, g.steps_per_beat, g.beat_cost,
+               g.replayed() ? fmt::format("replayed ({} steps)", g.replay_steps)
+                            : fmt::format("extrapolated (the replay ran {} step{} of it)", g.replay_steps,
+                                          g.replay_steps == 1 ? "" : "s"));
+  }
+  fmt::print("\n{:>8} {:>6} | seconds per step in segment 1..{} | {:>6} {:>10} {:>12}\n", "workers", "u/w",
+             first.segments.size(), "rho", "beat s", "core-hours");
   for (const BeatRow& r : rows) {
     fmt::print("{:>8} {:>6} |", r.workers, r.units_per_worker);
-    for (const PhaseProjection& ph : r.beat.phases) fmt::print(" {:>12.4g}", ph.seconds_per_step);
+    for (const SegmentProjection& g : r.beat.segments) fmt::print(" {:>9.4g}", g.seconds_per_step);
     fmt::print(" | {:>6.3g} {:>10.4g} {:>12.4g}\n", r.beat.ratio, r.beat.seconds,
                (r.workers + coordinators) * r.beat.seconds / 3600.0);
   }

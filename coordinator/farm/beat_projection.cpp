@@ -25,7 +25,7 @@ std::vector<StepCost> step_costs(const std::vector<int>& iteration_step, const s
         throw InputError(fmt::format("{}: step {} of the traces has no circulation phase in summary.json's "
                                      "history; expected a run with a circulation whose summary covers its traces",
                                      run, iteration_step[i]));
-      steps.push_back({it->second, 0.0});
+      steps.push_back({iteration_step[i], it->second, 0.0});
     }
     steps.back().seconds += iteration_seconds[i];
   }
@@ -34,44 +34,48 @@ std::vector<StepCost> step_costs(const std::vector<int>& iteration_step, const s
 
 BeatProjection project_beat(const std::vector<StepCost>& beat, int beats, const std::vector<StepCost>& replay) {
   if (beats < 1) throw InputError(fmt::format("beat projection: {} beats, expected at least one", beats));
+  std::map<int, double> replayed;  // step -> predicted seconds
+  for (const StepCost& s : replay) replayed[s.step] += s.seconds;
   BeatProjection p;
-  std::map<std::string, std::size_t> row;  // phase -> index in p.phases
-  std::vector<double> beat_total;
-  for (const StepCost& s : beat) {
+  std::vector<double> beat_total, replay_total, beat_on_replayed;
+  for (std::size_t i = 0; i < beat.size(); ++i) {
+    const StepCost& s = beat[i];
     if (s.phase == kInflation) continue;
-    auto [it, added] = row.emplace(s.phase, p.phases.size());
-    if (added) {
-      p.phases.push_back({s.phase});
+    if (p.segments.empty() || p.segments.back().phase != s.phase || p.segments.back().last_step + 1 != s.step) {
+      p.segments.push_back({s.phase, s.step, s.step});
       beat_total.push_back(0.0);
+      replay_total.push_back(0.0);
+      beat_on_replayed.push_back(0.0);
     }
-    p.phases[it->second].steps_per_beat += 1.0;
-    beat_total[it->second] += s.seconds;
-  }
-  std::vector<double> replay_total(p.phases.size(), 0.0);
-  for (const StepCost& s : replay) {
-    const auto it = row.find(s.phase);
-    if (it == row.end()) continue;  // the replay's inflation, or a phase the beat never reached
-    ++p.phases[it->second].replay_steps;
-    replay_total[it->second] += s.seconds;
+    SegmentProjection& g = p.segments.back();
+    g.last_step = s.step;
+    g.steps_per_beat += 1.0;
+    beat_total.back() += s.seconds;
+    if (const auto it = replayed.find(s.step); it != replayed.end()) {
+      ++g.replay_steps;
+      replay_total.back() += it->second;
+      beat_on_replayed.back() += s.seconds;
+    }
   }
   double replay_sum = 0.0, beat_sum = 0.0;
-  for (std::size_t i = 0; i < p.phases.size(); ++i) {
-    PhaseProjection& ph = p.phases[i];
-    ph.beat_cost = beat_total[i] / ph.steps_per_beat;
-    if (ph.replay_steps < kMinReplayedSteps) continue;
-    ph.seconds_per_step = replay_total[i] / ph.replay_steps;
+  for (std::size_t i = 0; i < p.segments.size(); ++i) {
+    SegmentProjection& g = p.segments[i];
+    g.beat_cost = beat_total[i] / g.steps_per_beat;
+    if (!g.replayed()) continue;
+    g.seconds_per_step = replay_total[i] / g.replay_steps;
     replay_sum += replay_total[i];
-    beat_sum += ph.replay_steps * ph.beat_cost;
+    beat_sum += beat_on_replayed[i];
   }
   if (!(replay_sum > 0.0) || !(beat_sum > 0.0))
-    throw InputError(fmt::format("beat projection: the replayed steps cover no phase of the full beat (after "
-                                 "inflation) with {} steps or more; expected a replay of some of the beat's steps",
+    throw InputError(fmt::format("beat projection: the replayed steps cover no segment of the full beat (after "
+                                 "inflation) with {} steps or more; expected a replay of some of the beat's steps "
+                                 "(a window restarted from its checkpoint)",
                                  kMinReplayedSteps));
   p.ratio = replay_sum / beat_sum;
-  for (PhaseProjection& ph : p.phases) {
-    ph.steps_per_beat /= beats;
-    if (ph.replay_steps < kMinReplayedSteps) ph.seconds_per_step = p.ratio * ph.beat_cost;
-    p.seconds += ph.steps_per_beat * ph.seconds_per_step;
+  for (SegmentProjection& g : p.segments) {
+    if (!g.replayed()) g.seconds_per_step = p.ratio * g.beat_cost;
+    g.steps_per_beat /= beats;
+    p.seconds += g.steps_per_beat * g.seconds_per_step;
   }
   return p;
 }
