@@ -12,6 +12,9 @@ Writes OUT_DIR/biv_blood.msh (--cavity --size 3 --order 2) and checks:
   - `fe2heart validate` accepts a scene with blood in both cavities, valve rings for both
     ventricles against a biventricular Windkessel, and the endocardia (interfaces of the
     mesh) as the wall's cavity surfaces.
+With --rv-cut 4 --lv-axis-nodes 3 (OUT_DIR/biv_blood_cut.msh): no RV blood node lies
+beyond the cut (x < 4), nodes on the LV's axis lie inside its blood off every surface, and
+--lv-axis-nodes without --cavity is refused naming the option.
 Exits 1 naming the first failed check.
 """
 import json
@@ -99,7 +102,37 @@ def main():
     r = subprocess.run([fe2heart, "validate", path], capture_output=True, text=True)
     if r.returncode != 0:
         fail(f"fe2heart validate {path}: exit {r.returncode}: {r.stdout}{r.stderr}")
+    check_cut_and_axis(script, out)
     print("ok")
+
+
+def check_cut_and_axis(script, out):
+    msh = os.path.join(out, "biv_blood_cut.msh")
+    subprocess.run(["/usr/bin/python3", script, msh, "--cavity", "--size", "3", "--order", "2",
+                    "--rv-cut", "4", "--lv-axis-nodes", "3"], check=True)
+    m = meshio.read(msh)
+    p = m.points
+    blocks = [(i, c) for i, c in enumerate(m.cells) if c.type.startswith("tetra")]
+    tets = np.vstack([c.data[:, :4] for _, c in blocks])
+    region = np.concatenate([m.cell_data["gmsh:physical"][i] for i, _ in blocks])
+    vol = np.einsum("ij,ij->i", p[tets[:, 1]] - p[tets[:, 0]],
+                    np.cross(p[tets[:, 2]] - p[tets[:, 0]], p[tets[:, 3]] - p[tets[:, 0]])) / 6.0
+    if not (vol > 0).all():
+        fail("--rv-cut/--lv-axis-nodes: an inverted tet")
+    rv_x = p[np.unique(tets[region == 3]), 0]
+    if rv_x.min() < 4.0 - 1e-6:
+        fail(f"--rv-cut 4: an RV blood node at x = {rv_x.min():.3f}")
+    on_surface = set(np.concatenate([c.data.ravel() for c in m.cells if c.type.startswith("triangle")]).tolist())
+    lv_nodes = set(np.unique(tets[region == 2]).tolist())
+    axis = [a for a in lv_nodes - on_surface if abs(p[a, 0]) < 1e-9 and abs(p[a, 1]) < 1e-9]
+    # From 3 mm above the apex (z = -17) to the base (z = 5), one per 3 mm: z = -14, ..., 1.
+    if len(axis) < 6:
+        fail(f"--lv-axis-nodes 3: {len(axis)} interior LV blood nodes on the axis, expected 6")
+    r = subprocess.run(["/usr/bin/python3", script, os.path.join(out, "no.msh"), "--lv-axis-nodes", "3"],
+                       capture_output=True, text=True)
+    if r.returncode == 0 or "--lv-axis-nodes" not in r.stdout + r.stderr:
+        fail(f"--lv-axis-nodes without --cavity: exit {r.returncode}, {r.stdout}{r.stderr}")
+    print(f"--rv-cut 4: RV blood from x = {rv_x.min():.2f}; --lv-axis-nodes 3: {len(axis)} axis nodes")
 
 
 if __name__ == "__main__":

@@ -30,6 +30,19 @@ alone. The human-sized heart of configs/biv-beat-fe2.json (LV endo 22.4/54.4 mm,
   /usr/bin/python3 tools/meshes/biv_mesh.py configs/meshes/biv_human.msh --scale 3.2 \
       --rv-wall 4 --rv-cavity 1.1 --size 36 --curvature 0 --order 2
 
+With blood in a beating heart two places fold blood elements whose vertices all lie on the
+moving endocardium (the mesh motion cannot move them): the thin wrap of the RV crescent,
+where the RV endocardium meets the LV epicardium at about 12° (the septum and the free wall
+shear across one element), and the LV's apical cap. --rv-cut X ends the RV cavity at the
+plane x = X (mm, after scaling; the wrap beyond it is wall, a thicker RV insertion) and
+--lv-axis-nodes D puts mesh nodes on the LV's long axis inside its blood, from D mm above
+the endocardial apex to the base, one per --size, so the apical elements have a vertex the
+mesh motion moves. The biventricular heart with blood of configs/biv-beat-blood.json is
+
+  /usr/bin/python3 tools/meshes/biv_mesh.py configs/meshes/biv_human_blood.msh --scale 3.2 \
+      --rv-wall 4 --rv-cavity 1.1 --size 15 --curvature 0 --order 2 --cavity --rv-cut 12 \
+      --lv-axis-nodes 10
+
 Gmsh's output differs between runs in the last digits of the curved nodes' coordinates
 (round-off in its optimizer); the shipped files are the ones the configs were measured on.
 At this coarseness Gmsh can fail ("PLC Error") or emit an inverted tet (fe2heart's reader
@@ -50,6 +63,9 @@ LV_ENDO = (0.0, 7.0, 7.0, 17.0)
 LV_EPI = (0.0, 10.0, 10.0, 20.0)
 RV_ENDO = (4.0, 12.0, 10.0, 15.0)
 RV_EPI = (4.0, 15.0, 13.0, 18.0)
+
+
+RV_CUT = None  # x of the plane ending the RV cavity (None: the whole crescent)
 
 
 def scale_geometry(scale, rv_wall, rv_cavity=1.0):
@@ -101,6 +117,9 @@ def valve_rings():
         if not outer > inner:
             sys.exit("biv_mesh.py: the RV cavity has no room for its rings at the base")
         rings[name] = (0.5 * (inner + outer), y, 0.3 * (outer - inner))
+        if RV_CUT is not None and rings[name][0] - rings[name][2] <= RV_CUT:
+            sys.exit(f"biv_mesh.py: --rv-cut {RV_CUT}: the {name} ring (x from {rings[name][0] - rings[name][2]:.1f}) "
+                     "would cross the cut; expected a cut short of the RV's rings")
     return rings
 
 
@@ -110,6 +129,12 @@ def build_geometry(cavity=False):
     lv_endo, lv_epi, rv_endo, rv_epi = (ellipsoid(occ, e) for e in (LV_ENDO, LV_EPI, RV_ENDO, RV_EPI))
     lv_epi_tool = occ.copy([lv_epi])
     rv_cavity, _ = occ.cut([rv_endo], lv_epi_tool)
+    if RV_CUT is not None:  # the crescent's thin wrap beyond x = RV_CUT becomes wall
+        big = 10.0 * max(RV_EPI[1:] + LV_EPI[1:])
+        keep = occ.addBox(RV_CUT, -big, -big, 2.0 * big, 2.0 * big, 2.0 * big)
+        rv_cavity, _ = occ.intersect(rv_cavity, [(3, keep)])
+        if len(rv_cavity) != 1:
+            sys.exit(f"biv_mesh.py: --rv-cut {RV_CUT}: the RV cavity became {len(rv_cavity)} volumes, expected 1")
     outer, _ = occ.fuse([lv_epi], [rv_epi])
     above = occ.addBox(-100.0, -100.0, BASE_Z, 200.0, 200.0, 100.0)
     tools = [lv_endo] + rv_cavity + [(3, above)]
@@ -196,6 +221,10 @@ def main():
                         help="multiplies the RV endocardium's semi-axes (default 1): a larger RV cavity")
     parser.add_argument("--cavity", action="store_true",
                         help="mesh the blood in both cavities too, with the valve rings in their bases")
+    parser.add_argument("--rv-cut", type=float,
+                        help="end the RV cavity at the plane x = RV_CUT (mm, after scaling): its thin wrap beyond is wall")
+    parser.add_argument("--lv-axis-nodes", type=float, metavar="D",
+                        help="with --cavity: mesh nodes on the LV's axis inside its blood, from D mm above the apex")
     args = parser.parse_args()
     if not args.size > 0.0:
         sys.exit(f"biv_mesh.py: --size {args.size}: expected a size > 0 (mm)")
@@ -208,6 +237,14 @@ def main():
     if not args.rv_cavity > 0.0:
         sys.exit(f"biv_mesh.py: --rv-cavity {args.rv_cavity}: expected a factor > 0")
     scale_geometry(args.scale, args.rv_wall, args.rv_cavity)
+    global RV_CUT
+    RV_CUT = args.rv_cut
+    if args.lv_axis_nodes is not None:
+        if not args.cavity:
+            sys.exit("biv_mesh.py: --lv-axis-nodes puts nodes in the LV blood: it needs --cavity")
+        if not 0.0 < args.lv_axis_nodes < LV_ENDO[3] + BASE_Z:
+            sys.exit(f"biv_mesh.py: --lv-axis-nodes {args.lv_axis_nodes}: expected a distance in (0, "
+                     f"{LV_ENDO[3] + BASE_Z:g}) mm above the LV's endocardial apex")
 
     gmsh.initialize(["biv_mesh.py"])
     try:
@@ -221,6 +258,14 @@ def main():
         if args.curvature == 0:  # sizes from --size alone, not spread in from small boundary curves
             gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
             gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+        if args.lv_axis_nodes is not None:
+            # Nodes on the LV's long axis: the apical blood elements get a vertex off the wall.
+            z, nodes = -LV_ENDO[3] + args.lv_axis_nodes, []
+            while z < BASE_Z - 0.5 * args.size:
+                nodes.append(gmsh.model.occ.addPoint(0.0, 0.0, z))
+                z += args.size
+            gmsh.model.occ.synchronize()
+            gmsh.model.mesh.embed(0, nodes, 3, lv)
         gmsh.model.mesh.generate(3)
         if args.order == 2:
             raise_to_quadratic()  # the septum is the thin element that could fold
