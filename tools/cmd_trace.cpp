@@ -4,6 +4,7 @@
 #include "common/spec/spec_schemas.h"
 #include "coordinator/farm/beat_projection.h"
 #include "coordinator/farm/farm_sim.h"
+#include "coordinator/farm/timing_noise.h"
 #include "coordinator/farm/trace_analysis.h"
 #include "tools/commands.h"
 
@@ -204,6 +205,18 @@ int farm_sim(const FarmSimOptions& o) {
                o.macro_from, c.coordinators, c.cpu_recorded ? "busiest coordinator's CPU" : "wall time",
                c.predict(MacroSolveKind::factorizing), c.predict(MacroSolveKind::kept),
                c.predict(MacroSolveKind::none));
+  }
+  const CostSpread spread = cost_spread(in);
+  fmt::print("cost spread of the replayed jobs (timing_noise.h), against the median of their kind in their "
+             "iteration: per unit (persistent) {:.1f} %, per job {:.1f} %, lag-1 correlation of a unit's "
+             "per-job deviation {:.2f} ({}); {} of {} jobs in kinds of {} or more\n",
+             100.0 * spread.persistent, 100.0 * spread.noise, spread.lag1,
+             std::abs(spread.lag1) < 0.2 ? "it does not repeat: timing noise" : "it repeats: work",
+             spread.jobs, spread.all_jobs, kMinJobsOfAKind);
+  if (o.without_timing_noise) {
+    remove_timing_noise(in);
+    fmt::print("--without-timing-noise: each such job replayed at its kind's median x its unit's persistent "
+               "factor\n");
   }
   const long long measured = static_cast<long long>(in.state_bytes.size());
   const FarmOptions f = farm_options_of_run(o);

@@ -94,6 +94,9 @@ struct FarmSimOptions {
   /// A full beat of the same heart (e.g. with cheaper units): extrapolate the replay to
   /// one beat's seconds and core-hours over its phases (coordinator/farm/beat_projection.h).
   std::string beat;
+  /// Replay each job at its kind's median cost in its iteration × its unit's persistent
+  /// factor: the run without the measuring machine's timing noise (timing_noise.h).
+  bool without_timing_noise = false;
   long long max_units = 3000000;
 };
 int farm_sim(const FarmSimOptions& o);

@@ -182,6 +182,10 @@ int main(int argc, char** argv) {
   c_sim->add_option("--beat", sim.beat,
                     "a run folder with a whole beat of the same heart (e.g. its cheap units): the replay "
                     "extrapolated to one beat's seconds and core-hours over the beat's circulation phases");
+  c_sim->add_flag("--without-timing-noise", sim.without_timing_noise,
+                  "replay each job at the median cost of the jobs of its kind (refresh or reuse, GMRES "
+                  "count) in its iteration x its unit's persistent factor: the run without the measuring "
+                  "machine's timing noise (the cost spread line says how large it was)");
   c_sim->add_option("--max-units", sim.max_units, "skip configurations with more units");
 
   fe2::cli::StudyOptions study;

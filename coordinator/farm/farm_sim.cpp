@@ -32,6 +32,7 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
   in.cost.assign(n, std::vector<double>(units, 0.0));
   in.refreshed.assign(n, std::vector<char>(units, 0));
   in.refresh_part.assign(n, std::vector<double>(units, 0.0));
+  in.gmres.assign(n, std::vector<int>(units, 0));
   in.state_bytes.assign(units, 0.0);
   for (const auto& u : t.units) {
     const int v = dense.at(u.at("unit").get<int>());
@@ -41,6 +42,7 @@ FarmSimInput farm_sim_input(const TraceData& t, double default_state_bytes) {
     in.cost[it->second][v] = u.at("cost").get<double>();
     in.refreshed[it->second][v] = u.at("kind").get<std::string>() == "refresh";
     in.refresh_part[it->second][v] = u.value("refresh_cost", 0.0);
+    in.gmres[it->second][v] = u.value("gmres", 0);
   }
   for (double& b : in.state_bytes)
     if (b <= 0.0) b = default_state_bytes;

@@ -25,6 +25,7 @@ struct FarmSimInput {
   std::vector<std::vector<double>> cost;          ///< [iteration][unit] CPU seconds
   std::vector<std::vector<char>> refreshed;       ///< [iteration][unit]
   std::vector<std::vector<double>> refresh_part;  ///< [iteration][unit] factorization CPU
+  std::vector<std::vector<int>> gmres;            ///< [iteration][unit] GMRES iterations of the job
   std::vector<double> macro;                      ///< [iteration] seconds
   std::vector<MacroSolveKind> macro_kind;         ///< [iteration]
   std::vector<int> step;                          ///< [iteration] time step (empty: each new)
