@@ -12,9 +12,12 @@ Writes OUT_DIR/biv_blood.msh (--cavity --size 3 --order 2) and checks:
   - `fe2heart validate` accepts a scene with blood in both cavities, valve rings for both
     ventricles against a biventricular Windkessel, and the endocardia (interfaces of the
     mesh) as the wall's cavity surfaces.
-With --rv-cut 4 --lv-axis-nodes 3 (OUT_DIR/biv_blood_cut.msh): no RV blood node lies
-beyond the cut (x < 4), nodes on the LV's axis lie inside its blood off every surface, and
---lv-axis-nodes without --cavity is refused naming the option.
+With --rv-cut 4 --lv-axis-nodes 3 --rv-mid-nodes --ring-scale 1.2
+(OUT_DIR/biv_blood_cut.msh): no RV blood node lies beyond the cut (x < 4), nodes on the LV's
+axis lie inside its blood off every surface, every point of biv_mesh.rv_mid_points is an
+RV blood node off every surface, each ring's radius is 1.2 times the first mesh's; and
+--lv-axis-nodes or --rv-mid-nodes without --cavity, and a --ring-scale whose mitral and
+aortic rings would touch, are refused naming the option.
 Exits 1 naming the first failed check.
 """
 import json
@@ -109,7 +112,7 @@ def main():
 def check_cut_and_axis(script, out):
     msh = os.path.join(out, "biv_blood_cut.msh")
     subprocess.run(["/usr/bin/python3", script, msh, "--cavity", "--size", "3", "--order", "2",
-                    "--rv-cut", "4", "--lv-axis-nodes", "3"], check=True)
+                    "--rv-cut", "4", "--lv-axis-nodes", "3", "--rv-mid-nodes", "--ring-scale", "1.2"], check=True)
     m = meshio.read(msh)
     p = m.points
     blocks = [(i, c) for i, c in enumerate(m.cells) if c.type.startswith("tetra")]
@@ -128,11 +131,37 @@ def check_cut_and_axis(script, out):
     # From 3 mm above the apex (z = -17) to the base (z = 5), one per 3 mm: z = -14, ..., 1.
     if len(axis) < 6:
         fail(f"--lv-axis-nodes 3: {len(axis)} interior LV blood nodes on the axis, expected 6")
-    r = subprocess.run(["/usr/bin/python3", script, os.path.join(out, "no.msh"), "--lv-axis-nodes", "3"],
-                       capture_output=True, text=True)
-    if r.returncode == 0 or "--lv-axis-nodes" not in r.stdout + r.stderr:
-        fail(f"--lv-axis-nodes without --cavity: exit {r.returncode}, {r.stdout}{r.stderr}")
-    print(f"--rv-cut 4: RV blood from x = {rv_x.min():.2f}; --lv-axis-nodes 3: {len(axis)} axis nodes")
+    rv_nodes = set(np.unique(tets[region == 3]).tolist()) - on_surface
+    sys.path.insert(0, os.path.dirname(script))
+    import biv_mesh
+    biv_mesh.RV_CUT = 4.0
+    mid = np.array(biv_mesh.rv_mid_points(3.0))
+    interior = p[sorted(rv_nodes)]
+    found = [np.linalg.norm(interior - q, axis=1).min() < 1e-9 for q in mid]
+    if len(mid) < 10 or not all(found):
+        fail(f"--rv-mid-nodes: {sum(found)} of the {len(mid)} mid-cavity points are interior RV blood nodes")
+    default_mesh = meshio.read(os.path.join(out, "biv_blood.msh"))
+    for ring, (cx, cy, r0) in biv_mesh.valve_rings().items():
+        radius = [ring_radius(mesh, ring, cx, cy) for mesh in (default_mesh, m)]
+        if abs(radius[0] / r0 - 1) > 1e-6 or abs(radius[1] / (1.2 * r0) - 1) > 1e-6:
+            fail(f"--ring-scale 1.2: the {ring} ring's radius {radius[1]:.4f} mm, the default's {radius[0]:.4f}, "
+                 f"expected {1.2 * r0:.4f} and {r0:.4f}")
+    for args, name in ((["--lv-axis-nodes", "3"], "--lv-axis-nodes"), (["--rv-mid-nodes"], "--rv-mid-nodes"),
+                       (["--cavity", "--ring-scale", "1.5"], "--ring-scale")):
+        r = subprocess.run(["/usr/bin/python3", script, os.path.join(out, "no.msh")] + args,
+                           capture_output=True, text=True)
+        if r.returncode == 0 or name not in r.stdout + r.stderr:
+            fail(f"{' '.join(args)}: exit {r.returncode}, {r.stdout}{r.stderr}")
+    print(f"--rv-cut 4: RV blood from x = {rv_x.min():.2f}; --lv-axis-nodes 3: {len(axis)} axis nodes; "
+          f"--rv-mid-nodes: {len(mid)} mid-cavity nodes")
+
+
+def ring_radius(mesh, ring, cx, cy):
+    """The largest distance of the ring's nodes from its centre (its boundary circle)."""
+    tag = mesh.field_data[ring][0]
+    nodes = np.unique(np.concatenate([c.data[mesh.cell_data["gmsh:physical"][i] == tag].ravel()
+                                      for i, c in enumerate(mesh.cells) if c.type.startswith("triangle")]))
+    return np.hypot(mesh.points[nodes, 0] - cx, mesh.points[nodes, 1] - cy).max()
 
 
 if __name__ == "__main__":

@@ -66,6 +66,39 @@ RV_EPI = (4.0, 15.0, 13.0, 18.0)
 
 
 RV_CUT = None  # x of the plane ending the RV cavity (None: the whole crescent)
+RING_SCALE = 1.0  # multiplies every valve ring's radius
+
+
+def rv_mid_points(size):
+    """Points midway across the RV cavity (between the LV epicardium and the RV endocardium
+    along rays from the long axis), about `size` apart, where the cavity is at least half
+    `size` thick and, with a cut, 0.3 `size` beyond it: with these as mesh nodes the RV
+    blood's elements have a vertex off the wall for the mesh motion to move."""
+    import math
+    cx, ax, ay, az = RV_ENDO
+    _, ex, _, ez = LV_EPI
+    points, z = [], -az + 0.5 * size
+    while z < BASE_Z - 0.5 * size:
+        r_epi = ex * max(0.0, 1.0 - (z / ez) ** 2) ** 0.5
+        k = 1.0 - (z / az) ** 2  # the RV endo's section at this z: ((x-cx)/ax)² + (y/ay)² = k
+        n = max(8, int(2.0 * math.pi * (r_epi + 0.5 * size) / size))
+        for i in range(n):
+            t = 2.0 * math.pi * i / n
+            c, s = math.cos(t), math.sin(t)
+            a = (c / ax) ** 2 + (s / ay) ** 2  # r² a − 2 r c cx / ax² + cx²/ax² − k = 0
+            b = -2.0 * c * cx / ax**2
+            d = b * b - 4.0 * a * ((cx / ax) ** 2 - k)
+            if k <= 0.0 or d <= 0.0:
+                continue
+            r_rv = (-b + d**0.5) / (2.0 * a)
+            if r_rv - r_epi < 0.5 * size:
+                continue
+            r = 0.5 * (r_rv + r_epi)
+            if RV_CUT is not None and r * c < RV_CUT + 0.3 * size:
+                continue
+            points.append((r * c, r * s, z))
+        z += size
+    return points
 
 
 def scale_geometry(scale, rv_wall, rv_cavity=1.0):
@@ -108,7 +141,13 @@ def valve_rings():
     by side on the LV's base disc; tricuspid and pulmonary in the RV's crescent between
     the LV epicardium and the RV endocardium, at y = ±half its half-width."""
     _, r_lv, _ = base_section(LV_ENDO)
-    rings = {"mitral": (-0.45 * r_lv, 0.0, 0.4 * r_lv), "aortic": (0.5 * r_lv, 0.0, 0.3 * r_lv)}
+    f = RING_SCALE
+    rings = {"mitral": (-0.45 * r_lv, 0.0, 0.4 * f * r_lv), "aortic": (0.5 * r_lv, 0.0, 0.3 * f * r_lv)}
+    gap = rings["aortic"][0] - rings["aortic"][2] - (rings["mitral"][0] + rings["mitral"][2])
+    if gap < 0.05 * r_lv or rings["mitral"][0] - rings["mitral"][2] < -0.95 * r_lv or \
+            rings["aortic"][0] + rings["aortic"][2] > 0.95 * r_lv:
+        sys.exit(f"biv_mesh.py: --ring-scale {f:g}: the mitral and aortic rings would touch each other or the "
+                 "LV's base rim; expected a smaller scale")
     _, r_epi, _ = base_section(LV_EPI)
     cx, ax, ay = base_section(RV_ENDO)
     for name, y in (("tricuspid", 0.5 * ay), ("pulmonary", -0.5 * ay)):
@@ -116,7 +155,10 @@ def valve_rings():
         outer = cx + ax * (1.0 - (y / ay) ** 2) ** 0.5
         if not outer > inner:
             sys.exit("biv_mesh.py: the RV cavity has no room for its rings at the base")
-        rings[name] = (0.5 * (inner + outer), y, 0.3 * (outer - inner))
+        rings[name] = (0.5 * (inner + outer), y, 0.3 * f * (outer - inner))
+        if rings[name][2] > 0.45 * (outer - inner) or rings[name][2] > 0.9 * abs(y):
+            sys.exit(f"biv_mesh.py: --ring-scale {f:g}: the {name} ring would touch the RV's base rim or the "
+                     "other RV ring; expected a smaller scale")
         if RV_CUT is not None and rings[name][0] - rings[name][2] <= RV_CUT:
             sys.exit(f"biv_mesh.py: --rv-cut {RV_CUT}: the {name} ring (x from {rings[name][0] - rings[name][2]:.1f}) "
                      "would cross the cut; expected a cut short of the RV's rings")
@@ -223,6 +265,11 @@ def main():
                         help="mesh the blood in both cavities too, with the valve rings in their bases")
     parser.add_argument("--rv-cut", type=float,
                         help="end the RV cavity at the plane x = RV_CUT (mm, after scaling): its thin wrap beyond is wall")
+    parser.add_argument("--ring-scale", type=float, default=1.0,
+                        help="with --cavity: multiplies the valve rings' radii (default 1: mitral 0.4, aortic 0.3 of "
+                             "the LV base radius, the RV's 0.3 of the crescent's width)")
+    parser.add_argument("--rv-mid-nodes", action="store_true",
+                        help="with --cavity: mesh nodes midway across the RV cavity, one per --size, where it is thick enough")
     parser.add_argument("--lv-axis-nodes", type=float, metavar="D",
                         help="with --cavity: mesh nodes on the LV's axis inside its blood, from D mm above the apex")
     args = parser.parse_args()
@@ -237,8 +284,11 @@ def main():
     if not args.rv_cavity > 0.0:
         sys.exit(f"biv_mesh.py: --rv-cavity {args.rv_cavity}: expected a factor > 0")
     scale_geometry(args.scale, args.rv_wall, args.rv_cavity)
-    global RV_CUT
+    if not args.ring_scale > 0.0:
+        sys.exit(f"biv_mesh.py: --ring-scale {args.ring_scale}: expected a factor > 0")
+    global RV_CUT, RING_SCALE
     RV_CUT = args.rv_cut
+    RING_SCALE = args.ring_scale
     if args.lv_axis_nodes is not None:
         if not args.cavity:
             sys.exit("biv_mesh.py: --lv-axis-nodes puts nodes in the LV blood: it needs --cavity")
@@ -266,6 +316,12 @@ def main():
                 z += args.size
             gmsh.model.occ.synchronize()
             gmsh.model.mesh.embed(0, nodes, 3, lv)
+        if args.rv_mid_nodes:
+            if not args.cavity:
+                sys.exit("biv_mesh.py: --rv-mid-nodes puts nodes in the RV blood: it needs --cavity")
+            nodes = [gmsh.model.occ.addPoint(*p) for p in rv_mid_points(args.size)]
+            gmsh.model.occ.synchronize()
+            gmsh.model.mesh.embed(0, nodes, 3, rv)
         gmsh.model.mesh.generate(3)
         if args.order == 2:
             raise_to_quadratic()  # the septum is the thin element that could fold
