@@ -43,6 +43,13 @@ mesh motion moves. The biventricular heart with blood of configs/biv-beat-blood.
       --rv-wall 4 --rv-cavity 1.1 --size 15 --curvature 0 --order 2 --cavity --rv-cut 12 \
       --lv-axis-nodes 10
 
+--rv-mid-nodes puts mesh nodes midway across the RV cavity (between the LV epicardium and
+the RV endocardium, one per --size where the cavity is at least half --size thick), so
+most RV blood elements get a vertex off the wall (at --size 15, 181 of 563 keep all four
+on it, against 343 without). --ring-scale F multiplies the four valve rings' radii (the
+default rings are small: ejection through them is a jet); it refuses a scale at which
+rings would touch each other or their base's rim.
+
 Gmsh's output differs between runs in the last digits of the curved nodes' coordinates
 (round-off in its optimizer); the shipped files are the ones the configs were measured on.
 At this coarseness Gmsh can fail ("PLC Error") or emit an inverted tet (fe2heart's reader
