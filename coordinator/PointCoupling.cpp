@@ -94,7 +94,12 @@ void PointCoupling::evaluate(int step, int iteration, double t_new, double dt, c
   evaluator_.evaluate(jobs_, results_);
   for (const auto& r : results_) {
     if (!why.empty()) break;
-    if (r.failed) why = r.message;
+    if (r.failed) {
+      // The unit's own message says what failed; where it sits is the coordinator's to say.
+      const MacroPoint& p = points_[r.unit];
+      why = fmt::format("{} (the FE² unit of point {}: macro element {}, at ({:.3g}, {:.3g}, {:.3g}))", r.message,
+                        r.unit, p.element, p.X[0], p.X[1], p.X[2]);
+    }
     else if (!r.A_hom.allFinite() || !r.P_tilde.allFinite() || !r.P_bar.allFinite() ||
              !std::isfinite(r.r_norm) || !std::isfinite(r.r_ref))
       why = fmt::format("point {}: non-finite stress, tangent or residual at t = {:.6g}", r.unit, t_new);
