@@ -1,6 +1,7 @@
 #include "coordinator/farm/timing_noise.h"
 
 #include "common/error.h"
+#include "common/median.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,12 +30,10 @@ KindMedians kind_medians(const FarmSimInput& in) {
     for (const auto& [kind, jobs] : kinds) {
       std::vector<double> c;
       for (size_t v : jobs) c.push_back(in.cost[i][v]);
-      std::sort(c.begin(), c.end());
-      const size_t n = c.size();
-      const double m = n % 2 ? c[n / 2] : 0.5 * (c[n / 2 - 1] + c[n / 2]);
+      const double m = median(c, 0.0);
       for (size_t v : jobs) {
         k.median[i][v] = m;
-        k.members[i][v] = static_cast<int>(n);
+        k.members[i][v] = static_cast<int>(jobs.size());
       }
     }
   }
@@ -43,7 +42,14 @@ KindMedians kind_medians(const FarmSimInput& in) {
 
 bool modelled(const KindMedians& k, size_t i, size_t v) { return k.members[i][v] >= kMinJobsOfAKind; }
 
-double std_dev(const std::vector<double>& x);
+double std_dev(const std::vector<double>& x) {
+  if (x.size() < 2) return 0.0;
+  double mean = 0.0, s = 0.0;
+  for (double e : x) mean += e;
+  mean /= static_cast<double>(x.size());
+  for (double e : x) s += (e - mean) * (e - mean);
+  return std::sqrt(s / static_cast<double>(x.size() - 1));
+}
 
 /// log a(v): the mean of log(c / m) over the unit's n(v) modelled jobs (0 for a unit with
 /// none), shrunk toward 0 by the share of its spread over units that noise explains: a
@@ -75,15 +81,6 @@ std::vector<double> log_persistent(const FarmSimInput& in, const KindMedians& k)
   const double shrink = spread > 0.0 ? std::clamp(1.0 - noise_of_means / (spread * spread), 0.0, 1.0) : 1.0;
   for (double& a : sum) a *= shrink;
   return sum;
-}
-
-double std_dev(const std::vector<double>& x) {
-  if (x.size() < 2) return 0.0;
-  double mean = 0.0, s = 0.0;
-  for (double e : x) mean += e;
-  mean /= static_cast<double>(x.size());
-  for (double e : x) s += (e - mean) * (e - mean);
-  return std::sqrt(s / static_cast<double>(x.size() - 1));
 }
 
 }  // namespace

@@ -58,6 +58,7 @@ names it) for neighbouring sizes: try another --size.
 Needs Debian's python3-gmsh (tools/bootstrap.sh installs it).
 """
 import argparse
+import math
 import sys
 
 import gmsh
@@ -81,7 +82,6 @@ def rv_mid_points(size):
     along rays from the long axis), about `size` apart, where the cavity is at least half
     `size` thick and, with a cut, 0.3 `size` beyond it: with these as mesh nodes the RV
     blood's elements have a vertex off the wall for the mesh motion to move."""
-    import math
     cx, ax, ay, az = RV_ENDO
     _, ex, _, ez = LV_EPI
     points, z = [], -az + 0.5 * size
