@@ -53,6 +53,8 @@ S mm at the RV cavity's corners off the base (its apical tip, where the RV endoc
 leaves the LV epicardium, and the --rv-cut faces' lower corners), growing back to --size
 over 2 --size: the wall and the blood are thin wedges there, and coarse elements make
 slivers of them (at --size 15, --rv-tip-size 5 gives 1217 wall tets against 966).
+--lv-apex-size S does the same about the LV's endocardial apex (with or without --cavity),
+where systole twists the apex against the base.
 
 Gmsh's output differs between runs in the last digits of the curved nodes' coordinates
 (round-off in its optimizer); the shipped files are the ones the configs were measured on.
@@ -222,12 +224,25 @@ def build_geometry(cavity=False):
     return wall[0], lv[0], rv[0]
 
 
+def size_ramp(distance, fine, size):
+    """A Threshold field: element size `fine` where the field `distance` is 0, growing
+    linearly to `size` at 2 `size`."""
+    field = gmsh.model.mesh.field
+    threshold = field.add("Threshold")
+    field.setNumber(threshold, "InField", distance)
+    field.setNumber(threshold, "SizeMin", fine)
+    field.setNumber(threshold, "SizeMax", size)
+    field.setNumber(threshold, "DistMin", 0.0)
+    field.setNumber(threshold, "DistMax", 2.0 * size)
+    return threshold
+
+
 def refine_rv_tip(rv, tip_size, size):
     """Element size tip_size at the RV blood's corners off the base plane (its apical tip,
     where the RV endocardium leaves the LV epicardium at a few degrees, and where the
     --rv-cut faces meet that rim), growing linearly to `size` over 2 `size`: there both
     the wall and the blood are thin wedges, which coarse elements turn into the slivers
-    that fold first in a beat."""
+    that fold first in a beat. Returns the size field."""
     surfaces = gmsh.model.getBoundary([(3, rv)], oriented=False)
     curves = gmsh.model.getBoundary(surfaces, combined=False, oriented=False)
     points = {abs(t) for _, t in gmsh.model.getBoundary(curves, combined=False, oriented=False)}
@@ -235,16 +250,20 @@ def refine_rv_tip(rv, tip_size, size):
     tip = [p for p in sorted(points) if gmsh.model.getValue(0, p, [])[2] < BASE_Z - eps]
     if not tip:
         sys.exit("biv_mesh.py: --rv-tip-size: the RV blood has no corner off the base plane")
-    field = gmsh.model.mesh.field
-    distance = field.add("Distance")
-    field.setNumbers(distance, "PointsList", tip)
-    threshold = field.add("Threshold")
-    field.setNumber(threshold, "InField", distance)
-    field.setNumber(threshold, "SizeMin", tip_size)
-    field.setNumber(threshold, "SizeMax", size)
-    field.setNumber(threshold, "DistMin", 0.0)
-    field.setNumber(threshold, "DistMax", 2.0 * size)
-    field.setAsBackgroundMesh(threshold)
+    distance = gmsh.model.mesh.field.add("Distance")
+    gmsh.model.mesh.field.setNumbers(distance, "PointsList", tip)
+    return size_ramp(distance, tip_size, size)
+
+
+def refine_lv_apex(apex_size, size):
+    """Element size apex_size at the LV's endocardial apex, growing linearly to `size`
+    over 2 `size`: the apex twists against the base in systole, and an FE² wall (its
+    units' matrix soft in shear) twists it further than the macro law, folding coarse
+    apical blood elements whose vertices sit on the endocardium and the LV's axis.
+    Returns the size field."""
+    distance = gmsh.model.mesh.field.add("MathEval")
+    gmsh.model.mesh.field.setString(distance, "F", f"sqrt(x*x + y*y + (z + {LV_ENDO[3]!r})^2)")
+    return size_ramp(distance, apex_size, size)
 
 
 def classify_with_blood(surface, wall, lv, rv):
@@ -309,6 +328,8 @@ def main():
     parser.add_argument("--rv-tip-size", type=float, metavar="S",
                         help="with --cavity: element size S (mm) at the RV cavity's corners off the base (its apical "
                              "tip on the LV epicardium, the --rv-cut faces' lower corners), growing to --size over 2 --size")
+    parser.add_argument("--lv-apex-size", type=float, metavar="S",
+                        help="element size S (mm) at the LV's endocardial apex, growing to --size over 2 --size")
     parser.add_argument("--lv-axis-nodes", type=float, metavar="D",
                         help="with --cavity: mesh nodes on the LV's axis inside its blood, from D mm above the apex")
     args = parser.parse_args()
@@ -333,6 +354,8 @@ def main():
             sys.exit("biv_mesh.py: --rv-tip-size refines the RV blood's tip: it needs --cavity")
         if not 0.0 < args.rv_tip_size < args.size:
             sys.exit(f"biv_mesh.py: --rv-tip-size {args.rv_tip_size}: expected a size in (0, {args.size:g}) mm (below --size)")
+    if args.lv_apex_size is not None and not 0.0 < args.lv_apex_size < args.size:
+        sys.exit(f"biv_mesh.py: --lv-apex-size {args.lv_apex_size}: expected a size in (0, {args.size:g}) mm (below --size)")
     if args.lv_axis_nodes is not None:
         if not args.cavity:
             sys.exit("biv_mesh.py: --lv-axis-nodes puts nodes in the LV blood: it needs --cavity")
@@ -347,7 +370,8 @@ def main():
         gmsh.model.add("biv")
         wall, lv, rv = build_geometry(args.cavity)
         gmsh.option.setNumber("Mesh.MeshSizeMax", args.size)
-        gmsh.option.setNumber("Mesh.MeshSizeMin", min(0.3 * args.size, args.rv_tip_size or args.size))
+        gmsh.option.setNumber("Mesh.MeshSizeMin", min(0.3 * args.size, args.rv_tip_size or args.size,
+                                                       args.lv_apex_size or args.size))
         gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", args.curvature)  # elements per 2π of curvature
         if args.curvature == 0:  # sizes from --size alone, not spread in from small boundary curves
             gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
@@ -360,8 +384,15 @@ def main():
                 z += args.size
             gmsh.model.occ.synchronize()
             gmsh.model.mesh.embed(0, nodes, 3, lv)
+        ramps = []
         if args.rv_tip_size is not None:
-            refine_rv_tip(rv, args.rv_tip_size, args.size)
+            ramps.append(refine_rv_tip(rv, args.rv_tip_size, args.size))
+        if args.lv_apex_size is not None:
+            ramps.append(refine_lv_apex(args.lv_apex_size, args.size))
+        if ramps:
+            finest = gmsh.model.mesh.field.add("Min")
+            gmsh.model.mesh.field.setNumbers(finest, "FieldsList", ramps)
+            gmsh.model.mesh.field.setAsBackgroundMesh(finest)
         if args.rv_mid_nodes:
             if not args.cavity:
                 sys.exit("biv_mesh.py: --rv-mid-nodes puts nodes in the RV blood: it needs --cavity")
