@@ -18,9 +18,9 @@ axis lie inside its blood off every surface, every point of biv_mesh.rv_mid_poin
 RV blood node off every surface, each ring's radius is 1.2 times the first mesh's; the
 same with --rv-tip-size 1 --lv-apex-size 1 (OUT_DIR/biv_blood_tip.msh) has elements of
 at most 0.7 times the mean edge within 3 mm of the RV blood's apical tip and 0.85 times
-that at the LV blood's apex; and --lv-axis-nodes, --rv-mid-nodes or --rv-tip-size without --cavity, a
---rv-tip-size or --lv-apex-size not below --size, and a
---ring-scale whose mitral and aortic rings would touch, are refused naming the option.
+that at the LV blood's apex; and --lv-axis-nodes, --rv-mid-nodes or --rv-tip-size
+without --cavity, a --rv-tip-size or --lv-apex-size not below --size, and a --ring-scale
+whose mitral and aortic rings would touch, are refused naming the option.
 Exits 1 naming the first failed check.
 """
 import json

@@ -349,13 +349,11 @@ def main():
     global RV_CUT, RING_SCALE
     RV_CUT = args.rv_cut
     RING_SCALE = args.ring_scale
-    if args.rv_tip_size is not None:
-        if not args.cavity:
-            sys.exit("biv_mesh.py: --rv-tip-size refines the RV blood's tip: it needs --cavity")
-        if not 0.0 < args.rv_tip_size < args.size:
-            sys.exit(f"biv_mesh.py: --rv-tip-size {args.rv_tip_size}: expected a size in (0, {args.size:g}) mm (below --size)")
-    if args.lv_apex_size is not None and not 0.0 < args.lv_apex_size < args.size:
-        sys.exit(f"biv_mesh.py: --lv-apex-size {args.lv_apex_size}: expected a size in (0, {args.size:g}) mm (below --size)")
+    if args.rv_tip_size is not None and not args.cavity:
+        sys.exit("biv_mesh.py: --rv-tip-size refines the RV blood's tip: it needs --cavity")
+    for option, fine in (("--rv-tip-size", args.rv_tip_size), ("--lv-apex-size", args.lv_apex_size)):
+        if fine is not None and not 0.0 < fine < args.size:
+            sys.exit(f"biv_mesh.py: {option} {fine}: expected a size in (0, {args.size:g}) mm (below --size)")
     if args.lv_axis_nodes is not None:
         if not args.cavity:
             sys.exit("biv_mesh.py: --lv-axis-nodes puts nodes in the LV blood: it needs --cavity")
