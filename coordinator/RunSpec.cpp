@@ -350,6 +350,8 @@ void read_newton(SpecNode n, RunSpec& spec) {
     o.forcing = m.choice("gmres_forcing") == "eisenstat_walker" ? MacroSolverOptions::Forcing::eisenstat_walker
                                                           : MacroSolverOptions::Forcing::constant;
     o.max_gmres_iterations = m.integer("max_gmres_iterations");
+    o.ordering = m.choice("ordering") == "mumps" ? MacroSolverOptions::Ordering::mumps
+                                                 : MacroSolverOptions::Ordering::metis;
     m.finish();
   }
   n.finish();

@@ -1,12 +1,15 @@
 #include "worker/MumpsSingleFactor.h"
 
 #include "common/error.h"
+#include "common/linalg/nested_dissection.h"
+#include "worker/ordering_lock.h"
 
 #include <mpi.h>
 #include <smumps_c.h>
 
 #include <cmath>
 #include <exception>
+#include <mutex>
 #include <vector>
 
 namespace fe2 {
@@ -44,9 +47,11 @@ class MumpsSingleFactor final : public SparseFactor {
     id_.ICNTL(5) = 0;   // assembled, centralized on the host
     id_.ICNTL(18) = 0;
     id_.ICNTL(14) = 50; // workspace margin for pivoting (percent)
-    // METIS, as CHOLMOD uses: MUMPS's automatic choice on one process measured ≈ 4×
-    // CHOLMOD's flops on a 3k-DOF unit.
-    id_.ICNTL(7) = 5;
+    // METIS's nested dissection, as CHOLMOD uses, computed here and passed as the user's
+    // order (ICNTL(7) = 1): MUMPS's automatic choice on one process measured ≈ 4×
+    // CHOLMOD's flops on a 3k-DOF unit, and Debian's MUMPS has no METIS of its own (a
+    // request for it, ICNTL(7) = 5, silently gives PORD).
+    id_.ICNTL(7) = 1;
     if (blr_tolerance_ > 0) {
       id_.ICNTL(35) = 2;  // BLR in factorization and solve
       id_.CNTL(7) = static_cast<float>(blr_tolerance_);
@@ -109,12 +114,20 @@ class MumpsSingleFactor final : public SparseFactor {
         jcn_.push_back(c + 1);
       }
     a_.assign(pos_.size(), 0.0f);
+    {
+      const std::lock_guard<std::mutex> lock(ordering_mutex());  // METIS draws from rand()
+      perm_in_ = nested_dissection_positions(n_, irn_, jcn_, 1);
+    }
+    for (auto& p : perm_in_) ++p;  // PERM_IN(i): variable i's position, 1-based
+    id_.perm_in = perm_in_.data();
     id_.n = n_;
     id_.nnz = static_cast<MUMPS_INT8>(pos_.size());
     id_.irn = irn_.data();
     id_.jcn = jcn_.data();
     id_.a = a_.data();
     run(1, "analysis");
+    FE2_CHECK(id_.INFOG(7) == 1, "MUMPS analysed the unit matrix with ordering {}, not the one given",
+              id_.INFOG(7));
   }
 
   void run(int job, const char* what) {
@@ -143,6 +156,7 @@ class MumpsSingleFactor final : public SparseFactor {
   Eigen::Index nnz_K_ = 0;
   std::vector<int> pos_;  ///< position in K's value array of each entry passed
   std::vector<MUMPS_INT> irn_, jcn_;
+  std::vector<int> perm_in_;  ///< the pivot order passed to the analysis (1-based)
   std::vector<float> a_, rhs_;
 };
 

@@ -405,7 +405,12 @@ Schema make_run_spec_schema() {
                                             "0.9(‖R̃_k‖/‖R̃_k−1‖)², safeguarded, in [gmres_rtol, 0.1] "
                                             "(loose far from the solution, tight near it)")},
                          {"max_gmres_iterations", integer(10, Range::closed(1, 500),
-                                                          "a solve that needs more refactors for the next one")}})}})},
+                                                          "a solve that needs more refactors for the next one")},
+                         {"ordering", choice("metis", {"metis", "mumps"},
+                                             "fill-reducing ordering of S̄'s factor: metis, METIS's nested "
+                                             "dissection passed to MUMPS as the user's order; mumps, MUMPS's "
+                                             "own automatic choice among the orderings its build has "
+                                             "(Debian's: PORD, AMD, AMF, QAMD)")}})}})},
        {"circulation", circulation_schema()},
        {"fluid", fluid_schema()},
        {"cavities",

@@ -10,7 +10,7 @@
 namespace fe2 {
 
 MacroSolver::MacroSolver(const proto::Group& group, int n, MacroSolverOptions options)
-    : group_(group), mumps_(group.raw(), n), options_(options) {}
+    : group_(group), mumps_(group.raw(), n, options.ordering), options_(options) {}
 
 void MacroSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
   rows_ = rows;
@@ -55,6 +55,8 @@ void MacroSolver::solve(const std::vector<double>& values, std::vector<double>& 
   mumps_.factorize(values);
   have_factor_ = true;
   ++stats_.factorizations;
+  stats_.factor_entries = mumps_.factor_entries();
+  stats_.factor_flops = mumps_.factor_flops();
   mumps_.solve(rhs);
 }
 

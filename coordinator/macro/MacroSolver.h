@@ -35,6 +35,8 @@ class MacroSolver {
     int factorizations = 0;
     int gmres_iterations = 0;  ///< over the solves with a kept factor
     int reused = 0;            ///< solves that used a kept factor
+    double factor_entries = 0; ///< of the last factor (MUMPS INFOG(29))
+    double factor_flops = 0;   ///< of the last factorization (RINFOG(3))
   };
 
   /// @note Collective on `group` (lent; must outlive this object).

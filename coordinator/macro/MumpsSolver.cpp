@@ -1,6 +1,7 @@
 #include "coordinator/macro/MumpsSolver.h"
 
 #include "common/error.h"
+#include "common/linalg/nested_dissection.h"
 
 #include <spdlog/spdlog.h>
 
@@ -12,7 +13,8 @@ namespace fe2 {
 #define ICNTL(k) icntl[(k)-1]
 #define INFOG(k) infog[(k)-1]
 
-MumpsSolver::MumpsSolver(MPI_Comm comm, int n) : n_(n) {
+MumpsSolver::MumpsSolver(MPI_Comm comm, int n, Ordering ordering)
+    : comm_(comm), n_(n), requested_(ordering) {
   id_.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(comm));
   id_.par = 1;  // the host takes part in the factorization
   id_.sym = 0;  // unsymmetric
@@ -28,6 +30,40 @@ MumpsSolver::MumpsSolver(MPI_Comm comm, int n) : n_(n) {
   // a singular S̄ that MUMPS would otherwise factor into a meaningless Δū, seen only
   // later as "inverted element". INFOG(28) then counts the null pivots.
   id_.ICNTL(24) = 1;
+  id_.ICNTL(7) = ordering == Ordering::metis ? 1 : 7;
+}
+
+void MumpsSolver::compute_nested_dissection() {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm_, &rank);
+  MPI_Comm_size(comm_, &size);
+  const int mine = static_cast<int>(irn_.size());
+  std::vector<int> counts(size), offsets(size, 0);
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<int> rows, cols;
+  if (rank == 0) {
+    long long total = 0;
+    for (int r = 0; r < size; ++r) {
+      offsets[r] = static_cast<int>(total);
+      total += counts[r];
+    }
+    FE2_CHECK(total < (1LL << 31), "{} macro triplets: more than a 32-bit MPI count", total);
+    rows.resize(total);
+    cols.resize(total);
+  }
+  MPI_Gatherv(irn_.data(), mine, MPI_INT, rows.data(), counts.data(), offsets.data(), MPI_INT, 0, comm_);
+  MPI_Gatherv(jcn_.data(), mine, MPI_INT, cols.data(), counts.data(), offsets.data(), MPI_INT, 0, comm_);
+  perm_in_.clear();
+  if (rank != 0) return;
+  perm_in_ = nested_dissection_positions(n_, rows, cols, 1);
+  for (auto& p : perm_in_) ++p;  // PERM_IN(i): variable i's position in the order, 1-based
+  id_.perm_in = perm_in_.data();
+}
+
+double MumpsSolver::factor_entries() const {
+  // INFOG(29) counts in millions when negative.
+  const int v = id_.INFOG(29);
+  return v < 0 ? -1e6 * v : static_cast<double>(v);
 }
 
 MumpsSolver::~MumpsSolver() {
@@ -62,12 +98,15 @@ void MumpsSolver::set_pattern(std::vector<int> rows, std::vector<int> cols) {
   id_.irn_loc = irn_.data();
   id_.jcn_loc = jcn_.data();
   id_.a_loc = a_.data();
+  if (requested_ == Ordering::metis) compute_nested_dissection();
   run(1, "analysis");
   analysed_ = true;
   // The ordering MUMPS actually used (INFOG(7)) can differ from the one asked for
   // (ICNTL(7) = 7: automatic) — with a saddle-point block it matters (DESIGN §6).
-  static const char* const names[] = {"AMD", "user", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
+  static const char* const names[] = {"AMD", "METIS (user)", "AMF", "SCOTCH", "PORD", "METIS", "QAMD"};
   const int used = id_.INFOG(7);
+  FE2_CHECK(requested_ != Ordering::metis || used == 1,
+            "MUMPS analysed the macro system with ordering {}, not the METIS order given", used);
   ordering_ = used >= 0 && used <= 6 ? names[used] : fmt::format("code {}", used);
   spdlog::info("MUMPS analysis: {} equations, {} triplets on this rank, ordering {} (INFOG(7) = {}), "
                "unsymmetric LU with pivoting",

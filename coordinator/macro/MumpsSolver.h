@@ -9,6 +9,7 @@
 #include <mpi.h>
 
 #include "common/error.h"
+#include "coordinator/macro/MacroSolverOptions.h"
 
 #include <string>
 #include <vector>
@@ -26,8 +27,12 @@ class SingularMatrixError : public NumericalError {
 
 class MumpsSolver {
  public:
+  /// metis: the order from the pattern gathered to the host, passed as the user's
+  /// (ICNTL(7) = 1); mumps: ICNTL(7) = 7.
+  using Ordering = MacroSolverOptions::Ordering;
+
   /// @note Collective on `comm` (lent; must outlive this object).
-  MumpsSolver(MPI_Comm comm, int n);
+  MumpsSolver(MPI_Comm comm, int n, Ordering ordering = Ordering::metis);
   ~MumpsSolver();
   MumpsSolver(const MumpsSolver&) = delete;
   MumpsSolver& operator=(const MumpsSolver&) = delete;
@@ -45,14 +50,23 @@ class MumpsSolver {
   void solve(std::vector<double>& rhs);
 
   int size() const { return n_; }
-  /// The fill-reducing ordering the analysis used (INFOG(7)), e.g. "METIS".
+  /// The fill-reducing ordering the analysis used (INFOG(7)), e.g. "PORD"; "METIS (user)"
+  /// for fe2heart's own nested dissection.
   const std::string& ordering() const { return ordering_; }
+  /// Entries of the last numeric factor (INFOG(29)) and the operations of its elimination
+  /// (RINFOG(3)), global (the same on every rank): what the ordering decides.
+  double factor_entries() const;
+  double factor_flops() const { return id_.rinfog[2]; }
 
  private:
   void run(int job, const char* what);
+  /// PERM_IN from METIS on the pattern gathered to the host (empty elsewhere). @note Collective.
+  void compute_nested_dissection();
   DMUMPS_STRUC_C id_{};
+  MPI_Comm comm_;
   int n_;
-  std::vector<int> irn_, jcn_;
+  Ordering requested_;
+  std::vector<int> irn_, jcn_, perm_in_;
   std::vector<double> a_;
   bool analysed_ = false;
   bool factored_ = false;

@@ -369,7 +369,9 @@ void add_macro_figures(const Simulation& sim, json& s) {
                                        : "every_iteration"},
                        {"factorizations", ms.factorizations},
                        {"kept_factor_solves", ms.reused},
-                       {"gmres_iterations", ms.gmres_iterations}};
+                       {"gmres_iterations", ms.gmres_iterations},
+                       {"factor_entries", ms.factor_entries},
+                       {"factor_flops", ms.factor_flops}};
 }
 
 }  // namespace
