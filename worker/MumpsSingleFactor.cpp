@@ -118,7 +118,6 @@ class MumpsSingleFactor final : public SparseFactor {
       const std::lock_guard<std::mutex> lock(ordering_mutex());  // METIS draws from rand()
       perm_in_ = nested_dissection_positions(n_, irn_, jcn_, 1);
     }
-    for (auto& p : perm_in_) ++p;  // PERM_IN(i): variable i's position, 1-based
     id_.perm_in = perm_in_.data();
     id_.n = n_;
     id_.nnz = static_cast<MUMPS_INT8>(pos_.size());

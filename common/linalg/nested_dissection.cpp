@@ -12,8 +12,8 @@ namespace fe2 {
 std::vector<int> nested_dissection_positions(int n, const std::vector<int>& rows,
                                              const std::vector<int>& cols, int base) {
   FE2_CHECK(rows.size() == cols.size(), "{} rows for {} columns", rows.size(), cols.size());
-  // The symmetric adjacency (CSR) of A + Aᵀ: count, fill, then sort and drop duplicates.
   FE2_CHECK(base == 0 || base == 1, "index base {} (0 or 1)", base);
+  // The symmetric adjacency (CSR) of A + Aᵀ: count, fill, then sort and drop duplicates.
   std::vector<idx_t> degree(n + 1, 0);
   for (size_t k = 0; k < rows.size(); ++k) {
     const int r = rows[k] - base, c = cols[k] - base;
@@ -59,7 +59,9 @@ std::vector<int> nested_dissection_positions(int n, const std::vector<int>& rows
     throw Error(fmt::format("METIS_NodeND failed with status {} on a matrix of order {} ({} "
                             "off-diagonal neighbours)",
                             rc, n, adjncy.size()));
-  return std::vector<int>(iperm.begin(), iperm.end());
+  std::vector<int> positions(n);
+  for (int i = 0; i < n; ++i) positions[i] = static_cast<int>(iperm[i]) + base;
+  return positions;
 }
 
 }  // namespace fe2

@@ -56,7 +56,6 @@ void MumpsSolver::compute_nested_dissection() {
   perm_in_.clear();
   if (rank != 0) return;
   perm_in_ = nested_dissection_positions(n_, rows, cols, 1);
-  for (auto& p : perm_in_) ++p;  // PERM_IN(i): variable i's position in the order, 1-based
   id_.perm_in = perm_in_.data();
 }
 
