@@ -63,6 +63,11 @@ def twist(spec, summary, names, point, axis):
         off = math.sqrt(sum(c * c for c in r) - sum(r[i] * axis[i] for i in range(3)) ** 2)
         if off < 1e-9 * max(1.0, math.sqrt(sum(c * c for c in r))):
             sys.exit(f"lv_twist.py: probe '{n}' at {probes[n]} lies on the axis: it has no rotation")
+    for h in hist:
+        missing = [n for n in names if n not in h.get("probes", {})]
+        if missing:
+            sys.exit(f"lv_twist.py: step {h.get('step', '?')} of the summary has no position for probe(s) "
+                     f"{missing}: was it run with this spec?")
     times = [h["time"] for h in hist]
     rot = {n: [rotation_deg(probes[n], h["probes"][n], point, axis) for h in hist] for n in names}
     extreme = {n: max(v, key=abs) for n, v in rot.items()}
