@@ -1,6 +1,7 @@
 #include "worker/MumpsSingleFactor.h"
 
 #include "common/error.h"
+#include "common/linalg/mumps_count.h"
 #include "common/linalg/nested_dissection.h"
 #include "worker/ordering_lock.h"
 
@@ -21,9 +22,6 @@ namespace {
 #define CNTL(k) cntl[(k)-1]
 #define INFOG(k) infog[(k)-1]
 #define RINFOG(k) rinfog[(k)-1]
-
-/// INFOG entries that count items are stored in millions when negative.
-double count_of(int v) { return v < 0 ? -1e6 * v : static_cast<double>(v); }
 
 class MumpsSingleFactor final : public SparseFactor {
  public:
@@ -95,7 +93,7 @@ class MumpsSingleFactor final : public SparseFactor {
   /// Forward and backward substitution over the factor's entries (INFOG(29), after
   /// compression); an LDLᵀ factor's entries are read twice.
   double solve_flops() const override {
-    return (symmetric_ ? 4.0 : 2.0) * count_of(id_.INFOG(29));
+    return (symmetric_ ? 4.0 : 2.0) * mumps_count(id_.INFOG(29));
   }
   /// INFOG(22): megabytes MUMPS used in the factorization, the factor included; MUMPS
   /// keeps that workspace until the instance ends.

@@ -1,6 +1,7 @@
 #include "coordinator/macro/MumpsSolver.h"
 
 #include "common/error.h"
+#include "common/linalg/mumps_count.h"
 #include "common/linalg/nested_dissection.h"
 
 #include <spdlog/spdlog.h>
@@ -60,9 +61,7 @@ void MumpsSolver::compute_nested_dissection() {
 }
 
 double MumpsSolver::factor_entries() const {
-  // INFOG(29) counts in millions when negative.
-  const int v = id_.INFOG(29);
-  return v < 0 ? -1e6 * v : static_cast<double>(v);
+  return mumps_count(id_.INFOG(29));  // the factor's entries
 }
 
 MumpsSolver::~MumpsSolver() {
