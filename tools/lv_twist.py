@@ -60,7 +60,7 @@ def twist(spec, summary, names, point, axis):
     axis = [c / norm for c in axis]
     for n in names:
         r = [probes[n][i] - point[i] for i in range(3)]
-        off = math.sqrt(sum(c * c for c in r) - sum(r[i] * axis[i] for i in range(3)) ** 2)
+        off = math.sqrt(max(0.0, sum(c * c for c in r) - sum(r[i] * axis[i] for i in range(3)) ** 2))
         if off < 1e-9 * max(1.0, math.sqrt(sum(c * c for c in r))):
             sys.exit(f"lv_twist.py: probe '{n}' at {probes[n]} lies on the axis: it has no rotation")
     for h in hist:
